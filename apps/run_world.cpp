@@ -1,0 +1,178 @@
+#include "apps/run_world.h"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <stdexcept>
+
+#include "core/agent/mapper.h"
+#include "core/agent/route_follower.h"
+#include "core/io/atomic_file.h"
+#include "core/io/json_writer.h"
+#include "core/mapping/map_io.h"
+#include "robots/robot_model.h"
+#include "robots/sim/sim_robot.h"
+#include "sim/simulator.h"
+#include "sim/world/ground_truth.h"
+
+namespace coopmap {
+
+namespace {
+
+struct RobotRun {
+  std::unique_ptr<SimRobot> driver;
+  std::unique_ptr<Mapper> mapper;
+  std::unique_ptr<RouteFollower> follower;
+  RobotRunResult result;
+  Pose2 last_true;
+  GridU8 truth;  // true occupancy up to the robot's swept height
+};
+
+void writeOutputs(const RunOptions& opt, const sim::World& world, const RunResult& result,
+                  const std::vector<RobotRun>& runs) {
+  std::filesystem::create_directories(opt.out_dir);
+  for (const RobotRun& r : runs) {
+    const std::string& name = r.result.name;
+    const OccupancyGrid& grid = r.mapper->grid();
+    writeRosMap(grid, opt.out_dir, "map_" + name);
+    writeMapPng(opt.out_dir + "/map_" + name + ".png", grid,
+                {{r.result.groundtruth, 0, 160, 0}, {r.result.odometry, 0, 0, 230}});
+    writeFileAtomic(opt.out_dir + "/map_" + name + "_evaluation.png",
+                    encodeEvaluationPng(grid, r.truth));
+    writeTum(opt.out_dir + "/trajectory_" + name + "_groundtruth.tum", r.result.groundtruth,
+             "coopmap ground truth of " + name + " in world " + world.name);
+    writeTum(opt.out_dir + "/trajectory_" + name + "_odometry.tum", r.result.odometry,
+             "coopmap odometry of " + name + " in world " + world.name);
+  }
+  JsonWriter j;
+  j.beginObject();
+  j.value("world", world.name).value("world_file", opt.world_file);
+  j.value("seed", static_cast<long long>(opt.seed));
+  j.value("sim_time_s", result.sim_time_s).value("wall_time_s", result.wall_time_s);
+  j.value("real_time_factor", result.real_time_factor);
+  j.beginObject("robots");
+  for (const RobotRunResult& r : result.robots) {
+    j.beginObject(r.name);
+    j.value("path_length_m", r.path_length_m).value("collisions", r.collisions);
+    j.value("frames", r.frames).value("route_complete", r.route_complete);
+    j.value("odometry_error_m", r.odometry_error_m)
+        .value("odometry_error_deg", r.odometry_error_deg);
+    j.beginObject("map");
+    j.value("wall_recall", r.map.wall_recall);
+    j.value("false_occupied_rate", r.map.false_occupied_rate);
+    j.value("coverage", r.map.coverage);
+    j.endObject();
+    j.endObject();
+  }
+  j.endObject();
+  j.endObject();
+  writeFileAtomic(opt.out_dir + "/metrics.json", j.str());
+}
+
+void drawProgress(double t, double total) {
+  const int width = 30;
+  const double f = std::min(1.0, t / total);
+  const int n = static_cast<int>(f * width);
+  std::fprintf(stderr, "\r[%s%s] %3d%%  sim %.0f s", std::string(n, '#').c_str(),
+               std::string(width - n, ' ').c_str(), static_cast<int>(100 * f), t);
+  std::fflush(stderr);
+}
+
+}  // namespace
+
+RunResult runWorld(const RunOptions& opt) {
+  if (!(opt.duration > 0.0))
+    throw std::invalid_argument("--duration: expected a positive number of seconds");
+  const auto wall_start = std::chrono::steady_clock::now();
+  sim::World world = sim::loadWorld(opt.world_file);
+  const int robot_count = opt.robots ? *opt.robots : static_cast<int>(world.robots.size());
+  if (robot_count < 1 || robot_count > static_cast<int>(world.robots.size()))
+    throw std::invalid_argument("--robots: expected 1.." + std::to_string(world.robots.size()) +
+                                " (robots in " + opt.world_file + "), got " +
+                                std::to_string(robot_count));
+
+  sim::Simulator sim(world, opt.seed);
+  const MapLimits limits = sim::worldMapLimits(world);
+  std::vector<RobotRun> runs;
+  for (int i = 0; i < robot_count; ++i) {
+    const sim::RobotSpec& spec = world.robots[i];
+    RobotModel model = loadRobotModel(spec.model_file);
+    if (opt.odometry) {
+      if (*opt.odometry != "perfect" && *opt.odometry != "drifting")
+        throw std::invalid_argument("--odometry: expected 'perfect' or 'drifting', got '" +
+                                    *opt.odometry + "'");
+      model.odometry.perfect = *opt.odometry == "perfect";
+    }
+    const int index = sim.addRobot(spec, {model.description, model.drive, model.odometry});
+    RobotRun r;
+    r.driver = std::make_unique<SimRobot>(sim, index);
+    r.mapper = std::make_unique<Mapper>(model.description, limits, MapperConfig{});
+    r.follower = std::make_unique<RouteFollower>(spec.route, RouteConfig{});
+    r.result.name = spec.name;
+    r.last_true = spec.start;
+    runs.push_back(std::move(r));
+  }
+
+  const double control_dt = 1.0 / world.control_rate;
+  const double sense_dt = 1.0 / world.sensing_rate;
+  double next_sense = 0.0, next_progress = 0.0;
+  const bool progress = opt.progress && ::isatty(2);
+  while (true) {
+    const double t = sim.time();
+    const bool sense = t + 1e-9 >= next_sense;
+    if (sense) next_sense += sense_dt;
+    bool all_done = true;
+    for (RobotRun& r : runs) {
+      const int i = r.driver->index();
+      if (sense) {
+        if (auto frame = r.driver->captureFrame()) {
+          r.mapper->process(*frame);
+          ++r.result.frames;
+        }
+      }
+      r.result.groundtruth.push_back({t, sim.truePose(i)});
+      r.result.odometry.push_back({t, r.driver->odometry()});
+      r.driver->command(r.follower->update(r.driver->odometry()));
+      all_done = all_done && r.follower->done();
+    }
+    if (progress && t >= next_progress) {
+      drawProgress(t, opt.duration);
+      next_progress += 1.0;
+    }
+    if (t >= opt.duration || (all_done && sense)) break;
+    sim.advance(control_dt);
+    for (RobotRun& r : runs) {
+      const Pose2 p = sim.truePose(r.driver->index());
+      r.result.path_length_m += std::hypot(p.x - r.last_true.x, p.y - r.last_true.y);
+      r.last_true = p;
+    }
+  }
+  if (progress) std::fprintf(stderr, "\n");
+
+  RunResult result;
+  result.sim_time_s = sim.time();
+  const GridU8 floor = sim::floorMask(world, limits);
+  for (RobotRun& r : runs) {
+    const int i = r.driver->index();
+    const Pose2 truth = sim.truePose(i), odo = r.driver->odometry();
+    r.result.collisions = r.driver->status().contact_events;
+    r.result.route_complete = r.follower->done();
+    r.result.odometry_error_m = std::hypot(truth.x - odo.x, truth.y - odo.y);
+    r.result.odometry_error_deg = std::abs(wrapAngle(truth.theta - odo.theta)) * 180.0 / M_PI;
+    r.truth = sim::trueOccupancy(world, limits, sim.description(i).swept_height);
+    r.result.map =
+        computeMapMetrics(r.mapper->grid(), r.truth, sim.spec(i).start.translation(), &floor);
+    result.robots.push_back(r.result);
+  }
+  result.wall_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  result.real_time_factor = result.wall_time_s > 0 ? result.sim_time_s / result.wall_time_s : 0.0;
+  if (!opt.out_dir.empty()) writeOutputs(opt, world, result, runs);
+  return result;
+}
+
+}  // namespace coopmap

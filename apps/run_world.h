@@ -1,0 +1,49 @@
+// Runs a world headless: robots follow their routes, map with stereo, and the run's maps,
+// trajectories and metrics are written to an output folder.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/io/tum.h"
+#include "core/mapping/map_metrics.h"
+
+namespace coopmap {
+
+struct RunOptions {
+  std::string world_file;
+  std::string out_dir;  // empty: write nothing
+  uint64_t seed = 1;
+  double duration = 600.0;              // s of simulated time at most
+  std::optional<int> robots;            // use only the first N robots of the world
+  std::optional<std::string> odometry;  // "perfect" or "drifting" overrides the model file
+  bool progress = false;                // progress bar on stderr
+};
+
+struct RobotRunResult {
+  std::string name;
+  double path_length_m = 0.0;
+  int collisions = 0;
+  int frames = 0;
+  bool route_complete = false;
+  double odometry_error_m = 0.0;  // final |odometry - truth|
+  double odometry_error_deg = 0.0;
+  MapMetrics map;
+  std::vector<StampedPose2> groundtruth, odometry;
+};
+
+struct RunResult {
+  std::vector<RobotRunResult> robots;
+  double sim_time_s = 0.0;
+  double wall_time_s = 0.0;
+  double real_time_factor = 0.0;
+};
+
+// Runs the world. Throws ConfigError for bad world or robot files, std::invalid_argument
+// for bad options, std::runtime_error when outputs cannot be written.
+RunResult runWorld(const RunOptions& options);
+
+}  // namespace coopmap

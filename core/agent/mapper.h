@@ -1,0 +1,45 @@
+// One robot's mapping pipeline for a sensing cycle: trinocular stereo, radial map,
+// occupancy grid update, with the radial maps kept for the traverse.
+#pragma once
+
+#include <vector>
+
+#include <opencv2/core/mat.hpp>
+
+#include "core/mapping/occupancy_grid.h"
+#include "core/perception/radial_map.h"
+#include "core/robot/robot_interface.h"
+#include "core/stereo/trinocular_matcher.h"
+
+namespace coopmap {
+
+struct MapperConfig {
+  StereoConfig stereo;
+  RadialMapConfig radial;
+  OccupancyConfig occupancy;
+};
+
+class Mapper {
+ public:
+  Mapper(const RobotDescription& robot, const MapLimits& limits, const MapperConfig& config);
+
+  // Runs one sensing cycle on a frame; the map is updated at the frame's odometry pose.
+  // Returns the radial map it inserted.
+  const RadialMap& process(const TrinocularFrame& frame);
+
+  const OccupancyGrid& grid() const { return grid_; }
+  const cv::Mat& lastDisparity() const { return disparity_; }
+  const std::vector<RadialMap>& traverse() const { return traverse_; }
+  const StereoStats& lastStereoStats() const { return stats_; }
+
+ private:
+  RobotDescription robot_;
+  MapperConfig config_;
+  TrinocularMatcher matcher_;
+  OccupancyGrid grid_;
+  cv::Mat disparity_;
+  StereoStats stats_;
+  std::vector<RadialMap> traverse_;
+};
+
+}  // namespace coopmap

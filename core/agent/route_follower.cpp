@@ -1,0 +1,84 @@
+#include "core/agent/route_follower.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace coopmap {
+
+void RouteConfig::validate() const {
+  auto bad = [](const std::string& f, double v) {
+    throw std::invalid_argument("route config: field '" + f +
+                                "': expected a positive number, got " + std::to_string(v));
+  };
+  if (!(linear_speed > 0.0)) bad("linear_speed", linear_speed);
+  if (!(angular_speed > 0.0)) bad("angular_speed", angular_speed);
+  if (!(heading_tolerance > 0.0)) bad("heading_tolerance", heading_tolerance);
+  if (!(arrive_tolerance > 0.0)) bad("arrive_tolerance", arrive_tolerance);
+  if (!(heading_gain > 0.0)) bad("heading_gain", heading_gain);
+}
+
+RouteFollower::RouteFollower(std::vector<Waypoint> route, const RouteConfig& config)
+    : route_(std::move(route)), config_(config) {
+  config_.validate();
+}
+
+MotionCommand RouteFollower::update(const Pose2& pose) {
+  while (next_ < route_.size()) {
+    const Waypoint& wp = route_[next_];
+    const Eigen::Vector2d to = wp.position - pose.translation();
+    const double dist = to.norm();
+    const double bearing_err = wrapAngle(std::atan2(to.y(), to.x()) - pose.theta);
+    switch (phase_) {
+      case Phase::kTurn:
+        if (dist < config_.arrive_tolerance) {
+          phase_ = Phase::kDrive;
+          continue;
+        }
+        if (std::abs(bearing_err) > config_.heading_tolerance) {
+          const double w = std::clamp(config_.heading_gain * bearing_err, -config_.angular_speed,
+                                      config_.angular_speed);
+          // Keep a minimum turn rate so the robot does not crawl into the tolerance.
+          const double min_w = 0.1;
+          return {0.0, std::abs(w) < min_w ? std::copysign(min_w, bearing_err) : w};
+        }
+        phase_ = Phase::kDrive;
+        continue;
+      case Phase::kDrive: {
+        // Arrived, or passed the waypoint (it is now behind the robot).
+        if (dist < config_.arrive_tolerance || std::abs(bearing_err) > M_PI / 2) {
+          if (wp.spin) {
+            phase_ = Phase::kSpin;
+            spin_done_ = 0.0;
+            last_theta_ = pose.theta;
+            continue;
+          }
+          ++next_;
+          phase_ = Phase::kTurn;
+          continue;
+        }
+        if (std::abs(bearing_err) > 0.35) {  // knocked off course: turn in place again
+          phase_ = Phase::kTurn;
+          continue;
+        }
+        const double v = std::min(config_.linear_speed, std::max(0.1, 1.5 * dist));
+        const double w = std::clamp(config_.heading_gain * bearing_err, -config_.angular_speed,
+                                    config_.angular_speed);
+        return {v, w};
+      }
+      case Phase::kSpin:
+        spin_done_ += wrapAngle(pose.theta - last_theta_);
+        last_theta_ = pose.theta;
+        if (spin_done_ >= 2.0 * M_PI) {
+          ++next_;
+          phase_ = Phase::kTurn;
+          continue;
+        }
+        return {0.0, config_.angular_speed};
+    }
+  }
+  return MotionCommand::stop();
+}
+
+}  // namespace coopmap

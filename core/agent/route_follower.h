@@ -1,0 +1,47 @@
+// Follows a scripted route the way the paper's robots drive: turn in place towards the
+// next waypoint, drive straight to it, optionally spin a full turn there to look around.
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "core/geometry/pose2.h"
+#include "core/robot/robot_interface.h"
+
+namespace coopmap {
+
+struct Waypoint {
+  Eigen::Vector2d position{0.0, 0.0};  // m, odometry (map) frame
+  bool spin = false;                   // turn a full circle on arrival
+};
+
+struct RouteConfig {
+  double linear_speed = 0.4;        // m/s cruise
+  double angular_speed = 0.7;       // rad/s for turns in place
+  double heading_tolerance = 0.03;  // rad: turn until within this, then drive
+  double arrive_tolerance = 0.05;   // m
+  double heading_gain = 2.0;        // rad/s per rad of heading error while driving
+  void validate() const;            // throws std::invalid_argument naming the field
+};
+
+class RouteFollower {
+ public:
+  RouteFollower(std::vector<Waypoint> route, const RouteConfig& config);
+
+  // The command for the current odometry pose; call at the control rate.
+  MotionCommand update(const Pose2& pose);
+  bool done() const { return next_ >= route_.size(); }
+  size_t nextWaypoint() const { return next_; }
+
+ private:
+  enum class Phase { kTurn, kDrive, kSpin };
+  std::vector<Waypoint> route_;
+  RouteConfig config_;
+  size_t next_ = 0;
+  Phase phase_ = Phase::kTurn;
+  double spin_done_ = 0.0;  // rad turned so far in a spin
+  double last_theta_ = 0.0;
+};
+
+}  // namespace coopmap

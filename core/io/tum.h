@@ -1,0 +1,23 @@
+// TUM trajectory files: "timestamp tx ty tz qx qy qz qw" per line, for evo and friends.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/geometry/pose2.h"
+
+namespace coopmap {
+
+struct StampedPose2 {
+  double stamp = 0.0;  // s
+  Pose2 pose;          // planar pose; z = 0, rotation about +z
+};
+
+// Formats a trajectory in TUM format (header comment first).
+std::string formatTum(const std::vector<StampedPose2>& trajectory, const std::string& comment);
+
+// Writes a trajectory in TUM format atomically.
+void writeTum(const std::string& path, const std::vector<StampedPose2>& trajectory,
+              const std::string& comment);
+
+}  // namespace coopmap

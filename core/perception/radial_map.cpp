@@ -1,0 +1,106 @@
+#include "core/perception/radial_map.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "core/stereo/trinocular_matcher.h"
+
+namespace coopmap {
+
+void RadialMapConfig::validate() const {
+  auto bad = [](const std::string& f, const std::string& e, double v) {
+    throw std::invalid_argument("radial map config: field '" + f + "': expected " + e + ", got " +
+                                std::to_string(v));
+  };
+  if (!(min_height >= 0.0)) bad("min_height", "a number >= 0", min_height);
+  if (!(max_range > 0.0)) bad("max_range", "a positive number", max_range);
+  if (min_support < 1) bad("min_support", "an integer >= 1", min_support);
+  if (!(support_tolerance > 0.0)) bad("support_tolerance", "a positive number", support_tolerance);
+  if (!(spike_ratio >= 0.0 && spike_ratio < 1.0))
+    bad("spike_ratio", "a number in [0, 1)", spike_ratio);
+  if (!(disparity_sigma > 0.0)) bad("disparity_sigma", "a positive number", disparity_sigma);
+}
+
+RadialMap buildRadialMap(const cv::Mat& disparity, const RobotDescription& robot,
+                         const RadialMapConfig& config, double stamp, const Pose2& odometry) {
+  const TrinocularRig& rig = robot.rig;
+  const CameraIntrinsics& k = rig.intrinsics;
+  if (disparity.type() != CV_32F || disparity.cols != k.width || disparity.rows != k.height)
+    throw std::invalid_argument("buildRadialMap: disparity must be CV_32F of the rig size");
+  const double fb = k.fx * rig.referenceBaseline();
+  const double cam_z = rig.mount_position.z();
+  const double min_disp_in_range = fb / config.max_range;
+
+  RadialMap out;
+  out.stamp = stamp;
+  out.odometry = odometry;
+  out.sensor_origin = rig.mount_position.head<2>();
+  out.max_range = config.max_range;
+  out.readings.resize(k.width);
+
+  std::vector<float> band;
+  band.reserve(k.height);
+  for (int u = 0; u < k.width; ++u) {
+    RadialReading& r = out.readings[u];
+    const double slope = (u - k.cx) / k.fx;  // X/Z in the camera frame
+    r.bearing = std::atan2(-slope, 1.0);
+    band.clear();
+    bool beyond = false;
+    for (int v = 0; v < k.height; ++v) {
+      const float d = disparity.at<float>(v, u);
+      if (!(d > 0.0f)) continue;
+      const double z = fb / d;
+      const double height = cam_z - (v - k.cy) * z / k.fy;
+      if (height < config.min_height || height > robot.swept_height) continue;
+      if (d < min_disp_in_range) {
+        beyond = true;
+        continue;
+      }
+      band.push_back(d);
+    }
+    std::sort(band.begin(), band.end(), std::greater<float>());
+    // The nearest return that enough pixels of the column agree with.
+    for (size_t i = 0; i < band.size(); ++i) {
+      size_t support = 0;
+      for (size_t j = i; j < band.size() && band[i] - band[j] <= config.support_tolerance; ++j)
+        ++support;
+      if (static_cast<int>(support) < config.min_support) continue;
+      double sum = 0.0;
+      for (size_t j = i; j < i + support; ++j) sum += band[j];
+      r.disparity = sum / support;
+      const double z = fb / r.disparity;
+      r.range = z * std::sqrt(1.0 + slope * slope);
+      r.sigma = z * z / fb * config.disparity_sigma * std::sqrt(1.0 + slope * slope);
+      r.kind = RadialKind::kHit;
+      break;
+    }
+    if (r.kind == RadialKind::kNone && beyond) {
+      r.kind = RadialKind::kBeyond;
+      r.range = config.max_range;
+    }
+  }
+  removeSpikes(out, config.spike_ratio);
+  return out;
+}
+
+int removeSpikes(RadialMap& map, double spike_ratio) {
+  int removed = 0;
+  std::vector<RadialReading>& rs = map.readings;
+  for (size_t i = 1; i + 1 < rs.size(); ++i) {
+    const RadialReading &a = rs[i - 1], &b = rs[i], &c = rs[i + 1];
+    if (b.kind != RadialKind::kHit) continue;
+    const double ra = a.kind == RadialKind::kNone ? -1.0 : a.range;
+    const double rc = c.kind == RadialKind::kNone ? -1.0 : c.range;
+    if (ra < 0.0 || rc < 0.0) continue;
+    const double near = std::min(ra, rc);
+    if (b.range < near * (1.0 - spike_ratio)) {
+      rs[i].kind = RadialKind::kNone;
+      ++removed;
+    }
+  }
+  return removed;
+}
+
+}  // namespace coopmap

@@ -1,0 +1,71 @@
+// The one robot interface: the simulator, a log replayer and a real B-14 each implement it,
+// and the core (agent, mapping) sees nothing else of them.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include <opencv2/core/mat.hpp>
+
+#include "core/geometry/camera.h"
+#include "core/geometry/pose2.h"
+
+namespace coopmap {
+
+// Static description of a robot: body, limits and camera rig.
+struct RobotDescription {
+  std::string model = "b14";
+  double body_radius = 0.178;      // m (14-inch diameter cylinder)
+  double body_height = 0.80;       // m, top of the base
+  double swept_height = 1.00;      // m, everything up to here can hit the robot
+  double max_linear_speed = 0.9;   // m/s
+  double max_angular_speed = 1.6;  // rad/s
+  double max_linear_accel = 1.0;   // m/s^2
+  double max_angular_accel = 3.0;  // rad/s^2
+  TrinocularRig rig;
+};
+
+// Three rectified 8-bit images captured together, with the odometry pose at capture.
+struct TrinocularFrame {
+  double stamp = 0.0;  // s, robot clock
+  Pose2 odometry;      // X_OR: robot in the odometry frame at capture
+  cv::Mat reference;   // CV_8UC1
+  cv::Mat horizontal;  // CV_8UC1, partner offset by rig.horizontal_offset
+  cv::Mat vertical;    // CV_8UC1, partner offset by rig.vertical_offset
+};
+
+// A motion command: a velocity (v, omega) held until the next command.
+struct MotionCommand {
+  double linear = 0.0;   // m/s, along robot +x
+  double angular = 0.0;  // rad/s, CCW
+  static MotionCommand stop() { return {}; }
+};
+
+// What the base reports besides odometry.
+struct RobotStatus {
+  bool bumped = false;     // touching an obstacle now
+  int contact_events = 0;  // count of distinct contacts since start
+};
+
+class RobotInterface {
+ public:
+  virtual ~RobotInterface() = default;
+  RobotInterface() = default;
+  RobotInterface(const RobotInterface&) = delete;
+  RobotInterface& operator=(const RobotInterface&) = delete;
+
+  // The robot's static description (valid for the robot's lifetime).
+  virtual const RobotDescription& description() const = 0;
+  // Current time on the robot's clock (s).
+  virtual double now() const = 0;
+  // Captures a trinocular frame now; nullopt when the cameras have nothing (yet).
+  virtual std::optional<TrinocularFrame> captureFrame() = 0;
+  // Odometry pose X_OR now (m, rad).
+  virtual Pose2 odometry() const = 0;
+  // Sets the motion command; held until replaced. Limits are applied by the base.
+  virtual void command(const MotionCommand& cmd) = 0;
+  // Bump and contact state.
+  virtual RobotStatus status() const = 0;
+};
+
+}  // namespace coopmap

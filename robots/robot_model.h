@@ -1,0 +1,22 @@
+// Robot model files (robots/<model>/<model>.yaml): body, limits, camera rig, and the
+// parameters the simulator needs to play the robot.
+#pragma once
+
+#include <string>
+
+#include "core/robot/robot_interface.h"
+#include "sim/simulator.h"
+
+namespace coopmap {
+
+struct RobotModel {
+  RobotDescription description;
+  sim::DriveConfig drive;
+  sim::OdometryConfig odometry;
+};
+
+// Loads a robot model file; ConfigError messages name the file, line and field.
+RobotModel loadRobotModel(const std::string& path);
+RobotModel parseRobotModel(const std::string& text, const std::string& file);
+
+}  // namespace coopmap

@@ -1,0 +1,186 @@
+#include "sim/physics/physics_world.h"
+
+#include <btBulletDynamicsCommon.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace coopmap::sim {
+
+struct Robot {
+  RobotDescription description;
+  DriveConfig drive;
+  std::unique_ptr<btCollisionShape> shape;
+  std::unique_ptr<btDefaultMotionState> motion;
+  std::unique_ptr<btRigidBody> body;
+  MotionCommand target;    // commanded
+  MotionCommand setpoint;  // after the base's acceleration profile
+  bool contact = false;
+  int contact_events = 0;
+};
+
+struct PhysicsWorld::Impl {
+  btDefaultCollisionConfiguration config;
+  btCollisionDispatcher dispatcher{&config};
+  btDbvtBroadphase broadphase;
+  btSequentialImpulseConstraintSolver solver;
+  btDiscreteDynamicsWorld world{&dispatcher, &broadphase, &solver, &config};
+  std::vector<std::unique_ptr<btCollisionShape>> shapes;
+  std::vector<std::unique_ptr<btRigidBody>> statics;
+  btRigidBody* floor = nullptr;
+  std::vector<std::unique_ptr<Robot>> robots;
+
+  ~Impl() {
+    for (auto& r : robots) world.removeRigidBody(r->body.get());
+    for (auto& s : statics) world.removeRigidBody(s.get());
+  }
+
+  btRigidBody* addStatic(std::unique_ptr<btCollisionShape> shape, const btTransform& pose,
+                         double friction) {
+    btRigidBody::btRigidBodyConstructionInfo info(0.0, nullptr, shape.get());
+    info.m_startWorldTransform = pose;
+    info.m_friction = static_cast<btScalar>(friction);
+    auto body = std::make_unique<btRigidBody>(info);
+    world.addRigidBody(body.get());
+    shapes.push_back(std::move(shape));
+    statics.push_back(std::move(body));
+    return statics.back().get();
+  }
+};
+
+PhysicsWorld::PhysicsWorld(const World& world, double step)
+    : impl_(std::make_unique<Impl>()), step_(step) {
+  if (!(step > 0.0 && step < 0.1))
+    throw std::invalid_argument("physics step must be in (0, 0.1) s");
+  Impl& im = *impl_;
+  im.world.setGravity(btVector3(0, 0, -9.81));
+  btTransform floor_pose;
+  floor_pose.setIdentity();
+  im.floor =
+      im.addStatic(std::make_unique<btStaticPlaneShape>(btVector3(0, 0, 1), 0), floor_pose, 0.0);
+  for (const SolidBox& box : world.solids()) {
+    btTransform pose;
+    pose.setIdentity();
+    pose.setOrigin(btVector3(box.center.x(), box.center.y(), box.z0 + 0.5 * box.size.z()));
+    pose.setRotation(btQuaternion(btVector3(0, 0, 1), static_cast<btScalar>(box.yaw)));
+    im.addStatic(std::make_unique<btBoxShape>(
+                     btVector3(0.5 * box.size.x(), 0.5 * box.size.y(), 0.5 * box.size.z())),
+                 pose, 0.3);
+  }
+}
+
+PhysicsWorld::~PhysicsWorld() = default;
+
+int PhysicsWorld::robotCount() const { return static_cast<int>(impl_->robots.size()); }
+
+int PhysicsWorld::addRobot(const RobotDescription& d, const Pose2& start,
+                           const DriveConfig& drive) {
+  Impl& im = *impl_;
+  auto r = std::make_unique<Robot>();
+  r->description = d;
+  r->drive = drive;
+  const double h = d.body_height;
+  r->shape = std::make_unique<btCylinderShapeZ>(btVector3(d.body_radius, d.body_radius, 0.5 * h));
+  btTransform pose;
+  pose.setIdentity();
+  pose.setOrigin(btVector3(start.x, start.y, 0.5 * h + 0.001));
+  pose.setRotation(btQuaternion(btVector3(0, 0, 1), static_cast<btScalar>(start.theta)));
+  r->motion = std::make_unique<btDefaultMotionState>(pose);
+  btVector3 inertia(0, 0, 0);
+  r->shape->calculateLocalInertia(drive.mass, inertia);
+  btRigidBody::btRigidBodyConstructionInfo info(drive.mass, r->motion.get(), r->shape.get(),
+                                                inertia);
+  // The body slides on its wheels; traction is applied by the drive model in step().
+  info.m_friction = 0.0;
+  info.m_restitution = 0.0;
+  r->body = std::make_unique<btRigidBody>(info);
+  r->body->setAngularFactor(btVector3(0, 0, 1));  // a synchro-drive base does not tip
+  r->body->setActivationState(DISABLE_DEACTIVATION);
+  im.world.addRigidBody(r->body.get());
+  im.robots.push_back(std::move(r));
+  return static_cast<int>(im.robots.size()) - 1;
+}
+
+void PhysicsWorld::command(int robot, const MotionCommand& cmd) {
+  Robot& r = *impl_->robots.at(robot);
+  const RobotDescription& d = r.description;
+  r.target.linear = std::clamp(cmd.linear, -d.max_linear_speed, d.max_linear_speed);
+  r.target.angular = std::clamp(cmd.angular, -d.max_angular_speed, d.max_angular_speed);
+}
+
+void PhysicsWorld::step() {
+  Impl& im = *impl_;
+  const double g = 9.81;
+  for (auto& rp : im.robots) {
+    Robot& r = *rp;
+    const RobotDescription& d = r.description;
+    // The base's motion profile: the setpoint ramps towards the command.
+    const double dv = d.max_linear_accel * step_, dw = d.max_angular_accel * step_;
+    r.setpoint.linear += std::clamp(r.target.linear - r.setpoint.linear, -dv, dv);
+    r.setpoint.angular += std::clamp(r.target.angular - r.setpoint.angular, -dw, dw);
+
+    // Wheel-floor traction: a servo force towards the setpoint, limited by mu * m * g;
+    // what it cannot deliver, the wheels slip.
+    const BodyVelocity v = bodyVelocity(static_cast<int>(&rp - &im.robots[0]));
+    const double m = r.drive.mass, tau = r.drive.velocity_time_constant;
+    const double f_max = r.drive.traction_mu * m * g;
+    double fx = m * (r.setpoint.linear - v.forward) / tau;
+    double fy = m * (0.0 - v.lateral) / tau;  // wheels resist sideways sliding
+    const double f = std::hypot(fx, fy);
+    if (f > f_max) {
+      fx *= f_max / f;
+      fy *= f_max / f;
+    }
+    const double izz = 0.5 * m * d.body_radius * d.body_radius;
+    const double t_max = f_max * d.body_radius;
+    const double tz = std::clamp(izz * (r.setpoint.angular - v.yaw_rate) / tau, -t_max, t_max);
+    const btTransform& tf = r.body->getWorldTransform();
+    const btVector3 force = tf.getBasis() * btVector3(fx, fy, 0);
+    r.body->applyCentralForce(force);
+    r.body->applyTorque(btVector3(0, 0, tz));
+  }
+  im.world.stepSimulation(static_cast<btScalar>(step_), 0);
+  time_ += step_;
+
+  // Contacts with anything but the floor.
+  std::vector<bool> touching(im.robots.size(), false);
+  const int manifolds = im.dispatcher.getNumManifolds();
+  for (int i = 0; i < manifolds; ++i) {
+    const btPersistentManifold* mf = im.dispatcher.getManifoldByIndexInternal(i);
+    const btCollisionObject* a = mf->getBody0();
+    const btCollisionObject* b = mf->getBody1();
+    if (a == im.floor || b == im.floor) continue;
+    bool real = false;
+    for (int c = 0; c < mf->getNumContacts(); ++c)
+      if (mf->getContactPoint(c).getDistance() < 0.002f) real = true;
+    if (!real) continue;
+    for (size_t k = 0; k < im.robots.size(); ++k)
+      if (a == im.robots[k]->body.get() || b == im.robots[k]->body.get()) touching[k] = true;
+  }
+  for (size_t k = 0; k < im.robots.size(); ++k) {
+    Robot& r = *im.robots[k];
+    if (touching[k] && !r.contact) ++r.contact_events;
+    r.contact = touching[k];
+  }
+}
+
+Pose2 PhysicsWorld::truePose(int robot) const {
+  const btTransform& tf = impl_->robots.at(robot)->body->getWorldTransform();
+  btScalar yaw, pitch, roll;
+  tf.getBasis().getEulerZYX(yaw, pitch, roll);
+  return {tf.getOrigin().x(), tf.getOrigin().y(), wrapAngle(yaw)};
+}
+
+BodyVelocity PhysicsWorld::bodyVelocity(int robot) const {
+  const btRigidBody& body = *impl_->robots.at(robot)->body;
+  const Pose2 p = truePose(robot);
+  const btVector3 v = body.getLinearVelocity();
+  const double c = std::cos(p.theta), s = std::sin(p.theta);
+  return {c * v.x() + s * v.y(), -s * v.x() + c * v.y(), body.getAngularVelocity().z()};
+}
+
+bool PhysicsWorld::inContact(int robot) const { return impl_->robots.at(robot)->contact; }
+int PhysicsWorld::contactEvents(int robot) const { return impl_->robots.at(robot)->contact_events; }
+
+}  // namespace coopmap::sim

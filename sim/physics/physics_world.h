@@ -1,0 +1,60 @@
+// Bullet physics of the world: static solids, a floor, and robots as cylinders driven by
+// velocity commands through traction at the wheel-floor contact.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "core/geometry/pose2.h"
+#include "core/robot/robot_interface.h"
+#include "sim/world/world.h"
+
+namespace coopmap::sim {
+
+// Body-frame velocity of a robot: forward and lateral speed (m/s), yaw rate (rad/s).
+struct BodyVelocity {
+  double forward = 0.0;
+  double lateral = 0.0;
+  double yaw_rate = 0.0;
+};
+
+struct DriveConfig {
+  double mass = 45.0;                    // kg
+  double traction_mu = 0.8;              // wheel-floor friction: limits drive and braking force
+  double velocity_time_constant = 0.05;  // s, how hard the base servo tracks the command
+};
+
+class PhysicsWorld {
+ public:
+  // Builds the static world. `step` is the fixed physics step (s).
+  PhysicsWorld(const World& world, double step);
+  ~PhysicsWorld();
+  PhysicsWorld(const PhysicsWorld&) = delete;
+  PhysicsWorld& operator=(const PhysicsWorld&) = delete;
+
+  // Adds a robot resting on the floor at `start`; returns its index.
+  int addRobot(const RobotDescription& robot, const Pose2& start, const DriveConfig& drive);
+
+  // Sets a robot's velocity command; the base applies its speed and acceleration limits.
+  void command(int robot, const MotionCommand& cmd);
+  // Advances by one fixed step.
+  void step();
+
+  Pose2 truePose(int robot) const;             // X_WR (m, rad)
+  BodyVelocity bodyVelocity(int robot) const;  // in the robot frame
+  bool inContact(int robot) const;             // touching a solid (not the floor) now
+  int contactEvents(int robot) const;          // new contacts since start
+  double stepSize() const { return step_; }
+  double time() const { return time_; }
+  int robotCount() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  double step_;
+  double time_ = 0.0;
+};
+
+}  // namespace coopmap::sim

@@ -1,0 +1,105 @@
+#include "sim/simulator.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace coopmap::sim {
+
+Simulator::Simulator(World world, uint64_t seed) : world_(std::move(world)), seed_(seed) {
+  physics_ = std::make_unique<PhysicsWorld>(world_, 1.0 / world_.physics_rate);
+}
+
+Simulator::~Simulator() = default;
+
+int Simulator::addRobot(const RobotSpec& spec, const SimRobotConfig& config) {
+  const CameraIntrinsics& k = config.description.rig.intrinsics;
+  if (!renderer_) {
+    renderer_ = std::make_unique<Renderer>(world_, k);
+  } else {
+    const CameraIntrinsics& r = renderer_->intrinsics();
+    if (r.width != k.width || r.height != k.height)
+      throw std::invalid_argument("simulator: all robots must share one camera resolution");
+  }
+  RobotState s;
+  s.spec = spec;
+  s.config = config;
+  s.physics_index = physics_->addRobot(config.description, spec.start, config.drive);
+  const uint64_t robot_seed = seed_ * 0x9E3779B97F4A7C15ull + robots_.size() + 1;
+  s.odometry = std::make_unique<OdometryModel>(config.odometry, spec.start, robot_seed);
+  robots_.push_back(std::move(s));
+  return static_cast<int>(robots_.size()) - 1;
+}
+
+double Simulator::time() const { return steps_ * physics_->stepSize(); }
+
+void Simulator::advance(double dt) {
+  const double h = physics_->stepSize();
+  const int64_t target = static_cast<int64_t>(std::llround((time() + dt) / h));
+  while (steps_ < target) {
+    physics_->step();
+    ++steps_;
+    for (RobotState& r : robots_)
+      r.odometry->integrate(physics_->bodyVelocity(r.physics_index),
+                            physics_->truePose(r.physics_index), h);
+  }
+}
+
+Eigen::Isometry3d Simulator::cameraPose(int robot, int camera) const {
+  const RobotState& r = robots_.at(robot);
+  const TrinocularRig& rig = r.config.description.rig;
+  const Pose2 p = physics_->truePose(r.physics_index);
+  Eigen::Isometry3d X_WR = Eigen::Isometry3d::Identity();
+  X_WR.translate(Eigen::Vector3d(p.x, p.y, 0.0));
+  X_WR.rotate(Eigen::AngleAxisd(p.theta, Eigen::Vector3d::UnitZ()));
+  Eigen::Matrix3d R_RC;  // OpenCV camera axes in the robot frame: x right, y down, z forward
+  R_RC.col(0) = Eigen::Vector3d(0, -1, 0);
+  R_RC.col(1) = Eigen::Vector3d(0, 0, -1);
+  R_RC.col(2) = Eigen::Vector3d(1, 0, 0);
+  Eigen::Isometry3d X_RC = Eigen::Isometry3d::Identity();
+  X_RC.linear() = R_RC;
+  X_RC.translation() = rig.mount_position;
+  Eigen::Isometry3d X_WC = X_WR * X_RC;
+  if (camera == 1) X_WC.translate(rig.horizontal_offset);
+  if (camera == 2) X_WC.translate(rig.vertical_offset);
+  return X_WC;
+}
+
+TrinocularFrame Simulator::capture(int robot, cv::Mat* truth_depth) {
+  std::vector<DynamicCylinder> others;
+  for (int k = 0; k < robotCount(); ++k) {
+    if (k == robot) continue;
+    const RobotDescription& d = robots_[k].config.description;
+    const Pose2 p = truePose(k);
+    others.push_back({{p.x, p.y}, d.body_radius, d.body_height});
+  }
+  TrinocularFrame f;
+  f.stamp = time();
+  f.odometry = odometry(robot);
+  renderer_->render(cameraPose(robot, 0), others, f.reference, truth_depth);
+  renderer_->render(cameraPose(robot, 1), others, f.horizontal);
+  renderer_->render(cameraPose(robot, 2), others, f.vertical);
+  return f;
+}
+
+void Simulator::command(int robot, const MotionCommand& cmd) {
+  physics_->command(robots_.at(robot).physics_index, cmd);
+}
+
+Pose2 Simulator::truePose(int robot) const {
+  return physics_->truePose(robots_.at(robot).physics_index);
+}
+
+Pose2 Simulator::odometry(int robot) const { return robots_.at(robot).odometry->pose(); }
+
+RobotStatus Simulator::status(int robot) const {
+  const int i = robots_.at(robot).physics_index;
+  return {physics_->inContact(i), physics_->contactEvents(i)};
+}
+
+const RobotDescription& Simulator::description(int robot) const {
+  return robots_.at(robot).config.description;
+}
+
+const RobotSpec& Simulator::spec(int robot) const { return robots_.at(robot).spec; }
+
+}  // namespace coopmap::sim

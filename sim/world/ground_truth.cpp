@@ -1,0 +1,62 @@
+#include "sim/world/ground_truth.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace coopmap::sim {
+
+MapLimits worldMapLimits(const World& world, double margin) {
+  const Eigen::Vector2d m(margin, margin);
+  return MapLimits::covering(world.floor_min - m, world.floor_max + m, world.map_resolution);
+}
+
+bool insideFootprint(const SolidBox& box, const Eigen::Vector2d& p) {
+  const Eigen::Vector2d d = p - box.center;
+  const double c = std::cos(box.yaw), s = std::sin(box.yaw);
+  const double along = c * d.x() + s * d.y(), across = -s * d.x() + c * d.y();
+  return std::abs(along) <= 0.5 * box.size.x() && std::abs(across) <= 0.5 * box.size.y();
+}
+
+GridU8 floorMask(const World& world, const MapLimits& limits) {
+  GridU8 mask(limits, 0);
+  for (int iy = 0; iy < limits.height; ++iy)
+    for (int ix = 0; ix < limits.width; ++ix) {
+      const Eigen::Vector2d c = limits.cellCenter(ix, iy);
+      mask.at(ix, iy) = c.x() > world.floor_min.x() && c.y() > world.floor_min.y() &&
+                        c.x() < world.floor_max.x() && c.y() < world.floor_max.y();
+    }
+  return mask;
+}
+
+GridU8 trueOccupancy(const World& world, const MapLimits& limits, double max_height) {
+  GridU8 truth(limits, 0);
+  constexpr int kSub = 4;
+  for (const SolidBox& box : world.solids()) {
+    if (box.z0 > max_height || box.z0 + box.size.z() <= 0.0) continue;
+    // Bounding rectangle of the rotated footprint.
+    const double c = std::abs(std::cos(box.yaw)), s = std::abs(std::sin(box.yaw));
+    const double hx = 0.5 * (c * box.size.x() + s * box.size.y());
+    const double hy = 0.5 * (s * box.size.x() + c * box.size.y());
+    const int x0 = std::max(0, limits.cellX(box.center.x() - hx));
+    const int x1 = std::min(limits.width - 1, limits.cellX(box.center.x() + hx));
+    const int y0 = std::max(0, limits.cellY(box.center.y() - hy));
+    const int y1 = std::min(limits.height - 1, limits.cellY(box.center.y() + hy));
+    for (int iy = y0; iy <= y1; ++iy) {
+      for (int ix = x0; ix <= x1; ++ix) {
+        if (truth.at(ix, iy)) continue;
+        for (int k = 0; k < kSub * kSub; ++k) {
+          const Eigen::Vector2d p = limits.origin + Eigen::Vector2d(ix + (k % kSub + 0.5) / kSub,
+                                                                    iy + (k / kSub + 0.5) / kSub) *
+                                                        limits.resolution;
+          if (insideFootprint(box, p)) {
+            truth.at(ix, iy) = 1;
+            break;
+          }
+        }
+      }
+    }
+  }
+  return truth;
+}
+
+}  // namespace coopmap::sim

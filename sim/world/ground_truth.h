@@ -1,0 +1,22 @@
+// Ground truth the simulator knows: the true occupancy of the world at map resolution.
+#pragma once
+
+#include "core/mapping/grid.h"
+#include "sim/world/world.h"
+
+namespace coopmap::sim {
+
+// Map limits covering the world's floor with a margin (m).
+MapLimits worldMapLimits(const World& world, double margin = 0.5);
+
+// 1 where a solid occupies any part of the cell between the floor and `max_height` (m):
+// each cell is sampled at 4x4 points, so partly covered cells count as occupied.
+GridU8 trueOccupancy(const World& world, const MapLimits& limits, double max_height);
+
+// 1 for cells whose centre lies on the floor (where a robot can be at all).
+GridU8 floorMask(const World& world, const MapLimits& limits);
+
+// True if the world point lies inside the footprint of the box (m).
+bool insideFootprint(const SolidBox& box, const Eigen::Vector2d& p);
+
+}  // namespace coopmap::sim

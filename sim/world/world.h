@@ -1,0 +1,101 @@
+// The world model: what a world file (YAML) describes.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "core/agent/route_follower.h"
+#include "core/geometry/pose2.h"
+
+namespace coopmap::sim {
+
+enum class TextureType { kNoise, kBricks, kPosters, kUniform };
+
+// A procedural grey texture, tiled over surfaces in world units.
+struct TextureSpec {
+  std::string name;
+  TextureType type = TextureType::kNoise;
+  double tile = 1.0;       // m covered by one repeat of the texture
+  double feature = 0.05;   // m, size of the smallest pattern features
+  double mean = 128.0;     // grey level
+  double contrast = 50.0;  // grey-level amplitude of the pattern
+  uint64_t seed = 0;       // derived from the world seed and the name unless given
+};
+
+// A solid, axis-aligned-in-its-own-frame box standing on the floor (or raised by z0).
+struct SolidBox {
+  Eigen::Vector2d center{0.0, 0.0};     // m, world
+  Eigen::Vector3d size{1.0, 1.0, 1.0};  // m: length along yaw, width, height
+  double yaw = 0.0;                     // rad
+  double z0 = 0.0;                      // m, bottom above the floor
+  std::string texture;
+  std::string kind;  // "wall", "box", "door", "home_base" (for people and tools)
+};
+
+struct WallSpec {
+  Eigen::Vector2d from{0.0, 0.0}, to{1.0, 0.0};
+  double thickness = 0.1;
+  double height = 2.5;
+  std::string texture;
+};
+
+struct DoorSpec {
+  Eigen::Vector2d center{0.0, 0.0};
+  double width = 0.9;
+  double yaw = 0.0;  // direction along the doorway
+  bool open = true;
+  std::string texture;
+};
+
+// The home-base landmark: two L-shaped corners. Each corner's arms leave its vertex at
+// heading +/- 45 degrees, so `heading` points into the corner's concave side.
+struct HomeBaseSpec {
+  struct Corner {
+    Eigen::Vector2d position{0.0, 0.0};
+    double heading = 0.0;
+  };
+  std::vector<Corner> corners;  // exactly two
+  double arm_length = 0.6;
+  double thickness = 0.04;
+  double height = 1.2;
+  std::string texture;
+};
+
+struct RobotSpec {
+  std::string name;
+  std::string model_file;  // resolved path of the robot model YAML
+  Pose2 start;
+  std::vector<Waypoint> route;
+};
+
+struct World {
+  std::string name;
+  std::string file;  // where it was loaded from
+  uint64_t seed = 1;
+  Eigen::Vector2d floor_min{0.0, 0.0}, floor_max{10.0, 8.0};
+  std::string floor_texture;
+  std::map<std::string, TextureSpec> textures;
+  std::vector<WallSpec> walls;
+  std::vector<SolidBox> boxes;
+  std::vector<DoorSpec> doors;
+  HomeBaseSpec home_base;
+  std::vector<RobotSpec> robots;
+  double map_resolution = 0.05;  // m per cell for maps and ground truth
+  double physics_rate = 200.0;   // Hz
+  double sensing_rate = 3.0;     // Hz (the paper's rate)
+  double control_rate = 20.0;    // Hz
+
+  // Every solid in the world as boxes: walls, furniture, closed doors, home-base arms.
+  std::vector<SolidBox> solids() const;
+};
+
+// Loads a world file. Errors (ConfigError) name the file, line and field.
+World loadWorld(const std::string& path);
+// Parses world text; `file` names it in messages and anchors relative paths.
+World parseWorld(const std::string& text, const std::string& file);
+
+}  // namespace coopmap::sim

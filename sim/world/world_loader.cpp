@@ -1,0 +1,254 @@
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "core/io/yaml_reader.h"
+#include "sim/world/world.h"
+
+namespace coopmap::sim {
+
+namespace {
+constexpr double kDeg = M_PI / 180.0;
+
+uint64_t fnv1a(const std::string& s) {
+  uint64_t h = 1469598103934665603ull;
+  for (unsigned char c : s) h = (h ^ c) * 1099511628211ull;
+  return h;
+}
+
+TextureSpec parseTexture(const YamlField& f, const std::string& name, uint64_t world_seed) {
+  f.allowOnly({"type", "tile", "feature", "mean", "contrast", "seed"});
+  TextureSpec t;
+  t.name = name;
+  const std::string type = f["type"].asEnum({"noise", "bricks", "posters", "uniform"});
+  t.type = type == "noise"     ? TextureType::kNoise
+           : type == "bricks"  ? TextureType::kBricks
+           : type == "posters" ? TextureType::kPosters
+                               : TextureType::kUniform;
+  t.tile = optionalDouble(f, "tile", t.tile, 0.05, 100.0, "a tile size in [0.05, 100] m");
+  t.feature =
+      optionalDouble(f, "feature", t.feature, 0.005, t.tile, "a feature size in [0.005 m, tile]");
+  t.mean = optionalDouble(f, "mean", t.mean, 0.0, 255.0, "a grey level in [0, 255]");
+  t.contrast = optionalDouble(f, "contrast", t.contrast, 0.0, 127.0, "a contrast in [0, 127]");
+  t.seed = f.has("seed") ? static_cast<uint64_t>(f["seed"].asInt(0, 1 << 30))
+                         : world_seed * 0x9E3779B97F4A7C15ull ^ fnv1a(name);
+  return t;
+}
+
+std::string textureRef(const YamlField& parent, const World& w, const std::string& fallback) {
+  if (!parent.has("texture")) {
+    if (fallback.empty()) parent.failMessage("missing required field 'texture'");
+    return fallback;
+  }
+  const YamlField f = parent["texture"];
+  const std::string name = f.asString();
+  if (!w.textures.count(name)) {
+    std::string known;
+    for (const auto& [k, v] : w.textures) known += (known.empty() ? "" : ", ") + k;
+    f.fail("the name of a texture declared under 'textures' (" + known + ")");
+  }
+  return name;
+}
+
+Pose2 parseStart(const YamlField& f) {
+  f.allowOnly({"position", "heading_deg"});
+  const Eigen::Vector2d p = f["position"].asVector2();
+  const double h =
+      f.has("heading_deg") ? f["heading_deg"].asDouble(-360, 360, "degrees in [-360, 360]") : 0.0;
+  return {p.x(), p.y(), wrapAngle(h * kDeg)};
+}
+
+Waypoint parseWaypoint(const YamlField& f) {
+  Waypoint wp;
+  if (f.isSequence()) {
+    wp.position = f.asVector2();
+    return wp;
+  }
+  if (!f.isMap()) f.fail("a waypoint: [x, y] or {at: [x, y], spin: true}");
+  f.allowOnly({"at", "spin"});
+  wp.position = f["at"].asVector2();
+  if (f.has("spin")) wp.spin = f["spin"].asBool();
+  return wp;
+}
+
+bool inside(const World& w, const Eigen::Vector2d& p) {
+  return p.x() >= w.floor_min.x() && p.y() >= w.floor_min.y() && p.x() <= w.floor_max.x() &&
+         p.y() <= w.floor_max.y();
+}
+}  // namespace
+
+std::vector<SolidBox> World::solids() const {
+  std::vector<SolidBox> out;
+  for (const WallSpec& wall : walls) {
+    const Eigen::Vector2d d = wall.to - wall.from;
+    SolidBox b;
+    b.center = 0.5 * (wall.from + wall.to);
+    b.size = {d.norm() + wall.thickness, wall.thickness, wall.height};  // overlapping ends
+    b.yaw = std::atan2(d.y(), d.x());
+    b.texture = wall.texture;
+    b.kind = "wall";
+    out.push_back(b);
+  }
+  for (const SolidBox& box : boxes) out.push_back(box);
+  for (const DoorSpec& door : doors) {
+    if (door.open) continue;
+    SolidBox b;
+    b.center = door.center;
+    b.size = {door.width, 0.05, 2.0};
+    b.yaw = door.yaw;
+    b.texture = door.texture;
+    b.kind = "door";
+    out.push_back(b);
+  }
+  const HomeBaseSpec& hb = home_base;
+  for (const HomeBaseSpec::Corner& c : hb.corners) {
+    for (double side : {-1.0, 1.0}) {
+      const double a = c.heading + side * M_PI / 4.0;
+      const Eigen::Vector2d dir(std::cos(a), std::sin(a));
+      SolidBox b;
+      // The arm's outer face passes through the vertex; the arm extends arm_length.
+      b.center = c.position + dir * (0.5 * hb.arm_length);
+      b.size = {hb.arm_length + hb.thickness, hb.thickness, hb.height};
+      b.yaw = a;
+      b.texture = hb.texture;
+      b.kind = "home_base";
+      out.push_back(b);
+    }
+  }
+  return out;
+}
+
+World parseWorld(const std::string& text, const std::string& file) {
+  const YamlField root = YamlField::loadString(text, file);
+  root.allowOnly({"name", "seed", "floor", "simulation", "textures", "walls", "boxes", "doors",
+                  "home_base", "robots"});
+  World w;
+  w.file = file;
+  w.name = root["name"].asString();
+  if (root.has("seed")) w.seed = static_cast<uint64_t>(root["seed"].asInt(0, 1 << 30));
+
+  const YamlField textures = root["textures"];
+  for (const std::string& name : textures.keys())
+    w.textures[name] = parseTexture(textures[name], name, w.seed);
+
+  const YamlField floor = root["floor"];
+  floor.allowOnly({"min", "max", "texture"});
+  w.floor_min = floor["min"].asVector2();
+  w.floor_max = floor["max"].asVector2();
+  if (!(w.floor_max.x() > w.floor_min.x() && w.floor_max.y() > w.floor_min.y()))
+    floor["max"].fail("a corner above and to the right of 'min'");
+  w.floor_texture = textureRef(floor, w, "");
+
+  if (const auto sim = root.get("simulation")) {
+    sim->allowOnly({"map_resolution", "physics_rate", "sensing_rate", "control_rate"});
+    w.map_resolution = optionalDouble(*sim, "map_resolution", w.map_resolution, 0.01, 1.0,
+                                      "a cell size in [0.01, 1] m");
+    w.physics_rate = optionalDouble(*sim, "physics_rate", w.physics_rate, 50.0, 2000.0,
+                                    "a rate in [50, 2000] Hz");
+    w.sensing_rate =
+        optionalDouble(*sim, "sensing_rate", w.sensing_rate, 0.1, 60.0, "a rate in [0.1, 60] Hz");
+    w.control_rate =
+        optionalDouble(*sim, "control_rate", w.control_rate, 1.0, 200.0, "a rate in [1, 200] Hz");
+  }
+
+  for (const YamlField& f : root["walls"].elements()) {
+    f.allowOnly({"from", "to", "thickness", "height", "texture"});
+    WallSpec wall;
+    wall.from = f["from"].asVector2();
+    wall.to = f["to"].asVector2();
+    if ((wall.to - wall.from).norm() < 1e-3) f["to"].fail("a point different from 'from'");
+    wall.thickness =
+        optionalDouble(f, "thickness", wall.thickness, 0.01, 2.0, "a positive thickness up to 2 m");
+    wall.height = optionalDouble(f, "height", wall.height, 0.05, 20.0, "a height in [0.05, 20] m");
+    wall.texture = textureRef(f, w, "");
+    w.walls.push_back(wall);
+  }
+  if (const auto boxes = root.get("boxes")) {
+    for (const YamlField& f : boxes->elements()) {
+      f.allowOnly({"center", "size", "yaw_deg", "z0", "texture"});
+      SolidBox b;
+      b.center = f["center"].asVector2();
+      b.size = f["size"].asVector3();
+      if (!(b.size.minCoeff() > 0.0))
+        f["size"].fail("three positive sizes [length, width, height]");
+      b.yaw = optionalDouble(f, "yaw_deg", 0.0, -360, 360, "degrees in [-360, 360]") * kDeg;
+      b.z0 = optionalDouble(f, "z0", 0.0, 0.0, 10.0, "a height in [0, 10] m");
+      b.texture = textureRef(f, w, "");
+      b.kind = "box";
+      if (!inside(w, b.center)) f["center"].fail("a point on the floor");
+      w.boxes.push_back(b);
+    }
+  }
+  if (const auto doors = root.get("doors")) {
+    for (const YamlField& f : doors->elements()) {
+      f.allowOnly({"center", "width", "yaw_deg", "open", "texture"});
+      DoorSpec d;
+      d.center = f["center"].asVector2();
+      d.width = optionalDouble(f, "width", d.width, 0.3, 5.0, "a width in [0.3, 5] m");
+      d.yaw = optionalDouble(f, "yaw_deg", 0.0, -360, 360, "degrees in [-360, 360]") * kDeg;
+      if (f.has("open")) d.open = f["open"].asBool();
+      d.texture = textureRef(f, w, w.walls.empty() ? "" : w.walls.front().texture);
+      w.doors.push_back(d);
+    }
+  }
+
+  const YamlField hb = root["home_base"];
+  hb.allowOnly({"corners", "arm_length", "thickness", "height", "texture"});
+  const auto corners = hb["corners"].elements();
+  if (corners.size() != 2) hb["corners"].fail("exactly 2 corners");
+  for (const YamlField& c : corners) {
+    c.allowOnly({"position", "heading_deg"});
+    HomeBaseSpec::Corner corner;
+    corner.position = c["position"].asVector2();
+    corner.heading = c["heading_deg"].asDouble(-360, 360, "degrees in [-360, 360]") * kDeg;
+    if (!inside(w, corner.position)) c["position"].fail("a point on the floor");
+    w.home_base.corners.push_back(corner);
+  }
+  w.home_base.arm_length =
+      optionalDouble(hb, "arm_length", w.home_base.arm_length, 0.2, 3.0, "a length in [0.2, 3] m");
+  w.home_base.thickness = optionalDouble(hb, "thickness", w.home_base.thickness, 0.01, 0.5,
+                                         "a thickness in [0.01, 0.5] m");
+  w.home_base.height =
+      optionalDouble(hb, "height", w.home_base.height, 0.3, 3.0, "a height in [0.3, 3] m");
+  w.home_base.texture = textureRef(hb, w, "");
+
+  const std::filesystem::path base = std::filesystem::path(file).parent_path();
+  std::set<std::string> names;
+  const auto robots = root["robots"].elements();
+  if (robots.empty()) root["robots"].fail("at least one robot");
+  for (const YamlField& f : robots) {
+    f.allowOnly({"name", "model", "start", "route"});
+    RobotSpec r;
+    r.name = f["name"].asString();
+    if (r.name.empty() ||
+        r.name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_-") != std::string::npos)
+      f["name"].fail("a name of lower-case letters, digits, '_' or '-'");
+    if (!names.insert(r.name).second) f["name"].fail("a name not used by another robot");
+    const std::string model = f["model"].asString();
+    r.model_file = (base / model).lexically_normal().string();
+    if (!std::filesystem::exists(r.model_file))
+      f["model"].fail("the path of a robot model file relative to the world file (" + r.model_file +
+                      " does not exist)");
+    r.start = parseStart(f["start"]);
+    if (!inside(w, r.start.translation())) f["start"].fail("a start position on the floor");
+    if (const auto route = f.get("route"))
+      for (const YamlField& wp : route->elements()) {
+        r.route.push_back(parseWaypoint(wp));
+        if (!inside(w, r.route.back().position)) wp.fail("a waypoint on the floor");
+      }
+    w.robots.push_back(std::move(r));
+  }
+  return w;
+}
+
+World loadWorld(const std::string& path) {
+  std::ifstream probe(path);
+  if (!probe) throw ConfigError(path + ": cannot open world file");
+  std::stringstream ss;
+  ss << probe.rdbuf();
+  return parseWorld(ss.str(), path);
+}
+
+}  // namespace coopmap::sim

@@ -1,0 +1,38 @@
+# The command line on bad input: a clear message naming file, line and field, a non-zero
+# exit code, and nothing written.
+file(REMOVE_RECURSE "${WORK_DIR}")
+file(MAKE_DIRECTORY "${WORK_DIR}")
+file(READ "${SOURCE_DIR}/worlds/lab.yaml" lab)
+string(REPLACE "thickness: 0.1, height: 2.5, texture: brick}      # south"
+               "thickness: -3, height: 2.5, texture: brick}      # south" broken "${lab}")
+if(broken STREQUAL lab)
+  message(FATAL_ERROR "test setup: the line to break was not found in worlds/lab.yaml")
+endif()
+# Keep relative model paths valid: write the broken world next to the real one's folder.
+set(world "${SOURCE_DIR}/worlds/.broken_for_test.yaml")
+file(WRITE "${world}" "${broken}")
+execute_process(COMMAND "${COOPMAP}" run "${world}" --out "${WORK_DIR}/out" --quiet
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+file(REMOVE "${world}")
+if(rc EQUAL 0)
+  message(FATAL_ERROR "coopmap accepted a broken world:\n${out}${err}")
+endif()
+if(NOT err MATCHES "\\.broken_for_test\\.yaml:[0-9]+:[0-9]+: walls\\[0\\]\\.thickness: expected a positive thickness")
+  message(FATAL_ERROR "unclear error message:\n${err}")
+endif()
+if(EXISTS "${WORK_DIR}/out")
+  message(FATAL_ERROR "coopmap wrote outputs for a broken world")
+endif()
+
+execute_process(COMMAND "${COOPMAP}" run "${SOURCE_DIR}/worlds/lab.yaml" --out "${WORK_DIR}/out"
+                        --duration -5
+                RESULT_VARIABLE rc ERROR_VARIABLE err)
+if(rc EQUAL 0 OR NOT err MATCHES "duration")
+  message(FATAL_ERROR "a negative --duration was not rejected clearly (rc ${rc}):\n${err}")
+endif()
+
+execute_process(COMMAND "${COOPMAP}" run --help RESULT_VARIABLE rc OUTPUT_VARIABLE out)
+if(NOT rc EQUAL 0 OR NOT out MATCHES "--seed" OR NOT out MATCHES "metrics.json")
+  message(FATAL_ERROR "coopmap run --help does not explain the options:\n${out}")
+endif()
+message(STATUS "bad input is reported clearly")

@@ -1,0 +1,107 @@
+// Radial maps from synthetic disparity images whose geometry is known exactly.
+#include "core/perception/radial_map.h"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "core/stereo/trinocular_matcher.h"
+
+namespace coopmap {
+namespace {
+
+RobotDescription robot() {
+  RobotDescription r;  // defaults: 160x120, f = 80 px, b = 0.1 m, camera 0.9 m high
+  r.rig.intrinsics = CameraIntrinsics::fromFov(160, 120, M_PI / 2);
+  return r;
+}
+
+// Disparity of a level camera looking at a wall at depth z (m) with a floor below:
+// pixels above the floor/wall junction see the wall; below it the floor.
+cv::Mat wallAndFloor(const RobotDescription& r, double z, double wall_height) {
+  const CameraIntrinsics& k = r.rig.intrinsics;
+  const double fb = k.fx * r.rig.referenceBaseline(), h = r.rig.mount_position.z();
+  cv::Mat d(k.height, k.width, CV_32F, cv::Scalar(kInvalidDisparity));
+  for (int v = 0; v < k.height; ++v)
+    for (int u = 0; u < k.width; ++u) {
+      const double ray_down = (v - k.cy) / k.fy;  // Y/Z
+      const double height_at_wall = h - ray_down * z;
+      if (height_at_wall >= 0.0 && height_at_wall <= wall_height) {
+        d.at<float>(v, u) = static_cast<float>(fb / z);
+      } else if (ray_down > 0.0 && height_at_wall < 0.0) {
+        d.at<float>(v, u) = static_cast<float>(fb * ray_down / h);  // floor at depth h / ray_down
+      }
+    }
+  return d;
+}
+
+TEST(RadialMapTest, RangesMatchWallAndFloorIsIgnored) {
+  const RobotDescription r = robot();
+  const double z = 2.0;
+  const RadialMap m = buildRadialMap(wallAndFloor(r, z, 2.5), r, RadialMapConfig{}, 1.5, Pose2());
+  ASSERT_EQ(m.readings.size(), 160u);
+  EXPECT_DOUBLE_EQ(m.stamp, 1.5);
+  EXPECT_EQ(m.sensor_origin, Eigen::Vector2d(0.10, 0.0));
+  for (size_t u = 0; u < m.readings.size(); ++u) {
+    const RadialReading& rd = m.readings[u];
+    ASSERT_EQ(rd.kind, RadialKind::kHit) << u;
+    EXPECT_NEAR(rd.range, z / std::cos(rd.bearing), 1e-4) << u;
+    EXPECT_NEAR(rd.sigma, z * z / 8.0 * 0.12 / std::cos(rd.bearing), 1e-6);
+  }
+  // Column 0 looks 45 degrees to the left (positive bearing), the last one to the right.
+  EXPECT_NEAR(m.readings.front().bearing, std::atan(79.5 / 80.0), 1e-9);
+  EXPECT_NEAR(m.readings.back().bearing, -std::atan(79.5 / 80.0), 1e-9);
+}
+
+TEST(RadialMapTest, ObstacleAboveTheRobotIsIgnored) {
+  RobotDescription r = robot();
+  // A "wall" seen only between 1.2 m and 2.5 m: a shelf above the robot's swept height.
+  cv::Mat d = wallAndFloor(r, 2.0, 2.5);
+  const CameraIntrinsics& k = r.rig.intrinsics;
+  for (int v = 0; v < k.height; ++v) {
+    const double height = 0.9 - (v - k.cy) / k.fy * 2.0;
+    if (height < 1.2)
+      for (int u = 0; u < k.width; ++u)
+        if (d.at<float>(v, u) == 4.0f) d.at<float>(v, u) = kInvalidDisparity;
+  }
+  const RadialMap m = buildRadialMap(d, r, RadialMapConfig{}, 0.0, Pose2());
+  for (const RadialReading& rd : m.readings) EXPECT_NE(rd.kind, RadialKind::kHit);
+}
+
+TEST(RadialMapTest, FarWallCountsAsBeyondRange) {
+  const RobotDescription r = robot();
+  const RadialMap m = buildRadialMap(wallAndFloor(r, 6.0, 2.5), r, RadialMapConfig{}, 0.0, Pose2());
+  for (const RadialReading& rd : m.readings) {
+    EXPECT_EQ(rd.kind, RadialKind::kBeyond);
+    EXPECT_DOUBLE_EQ(rd.range, 4.0);
+  }
+}
+
+TEST(RadialMapTest, UnsupportedSinglePixelIsNotAReturn) {
+  const RobotDescription r = robot();
+  cv::Mat d(120, 160, CV_32F, cv::Scalar(kInvalidDisparity));
+  d.at<float>(40, 80) = 10.0f;  // one stray match at 0.8 m
+  const RadialMap m = buildRadialMap(d, r, RadialMapConfig{}, 0.0, Pose2());
+  EXPECT_EQ(m.readings[80].kind, RadialKind::kNone);
+}
+
+TEST(RadialMapTest, SpikeBetweenAgreeingNeighboursIsRemoved) {
+  const RobotDescription r = robot();
+  cv::Mat d = wallAndFloor(r, 3.0, 2.5);
+  for (int v = 50; v < 70; ++v) d.at<float>(v, 60) = 12.0f;  // a mismatch "spike" at 0.67 m
+  const RadialMap m = buildRadialMap(d, r, RadialMapConfig{}, 0.0, Pose2());
+  EXPECT_EQ(m.readings[60].kind, RadialKind::kNone);
+  EXPECT_EQ(m.readings[59].kind, RadialKind::kHit);
+  EXPECT_EQ(m.readings[61].kind, RadialKind::kHit);
+  // A real obstacle spanning several columns stays.
+  for (int u = 90; u < 96; ++u)
+    for (int v = 50; v < 70; ++v) d.at<float>(v, u) = 12.0f;
+  const RadialMap m2 = buildRadialMap(d, r, RadialMapConfig{}, 0.0, Pose2());
+  for (int u = 91; u < 95; ++u) {
+    ASSERT_EQ(m2.readings[u].kind, RadialKind::kHit);
+    EXPECT_NEAR(m2.readings[u].range * std::cos(m2.readings[u].bearing), 8.0 / 12.0, 1e-4);
+  }
+}
+
+}  // namespace
+}  // namespace coopmap

@@ -1,0 +1,135 @@
+// World files: the shipped worlds load, and broken files are reported with the file,
+// the line and the field, and what was expected.
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include "core/io/yaml_reader.h"
+#include "sim/world/world.h"
+
+namespace coopmap::sim {
+namespace {
+
+const std::string kSrc = COOPMAP_SOURCE_DIR;
+
+// A minimal valid world; tests break one line of it.
+std::string minimal() {
+  return "name: t\n"                                                     // 1
+         "textures:\n"                                                   // 2
+         "  a: {type: noise, tile: 1.0}\n"                               // 3
+         "floor: {min: [0, 0], max: [5, 4], texture: a}\n"               // 4
+         "walls:\n"                                                      // 5
+         "  - {from: [0, 0], to: [5, 0], thickness: 0.1, texture: a}\n"  // 6
+         "home_base:\n"                                                  // 7
+         "  corners:\n"                                                  // 8
+         "    - {position: [1, 1], heading_deg: 0}\n"                    // 9
+         "    - {position: [1, 2], heading_deg: 0}\n"                    // 10
+         "  texture: a\n"                                                // 11
+         "robots:\n"                                                     // 12
+         "  - name: r1\n"                                                // 13
+         "    model: " +
+         kSrc +
+         "/robots/b14/b14.yaml\n"                            // 14
+         "    start: {position: [2, 2], heading_deg: 90}\n"  // 15
+         "    route: [[3, 3], {at: [4, 3], spin: true}]\n";  // 16
+}
+
+std::string replaceLine(const std::string& text, int line, const std::string& with) {
+  std::string out;
+  std::istringstream in(text);
+  std::string l;
+  for (int n = 1; std::getline(in, l); ++n) out += (n == line ? with : l) + "\n";
+  return out;
+}
+
+std::string errorOf(const std::string& text) {
+  try {
+    parseWorld(text, "w.yaml");
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+TEST(WorldLoaderTest, MinimalWorldLoads) {
+  const World w = parseWorld(minimal(), "w.yaml");
+  EXPECT_EQ(w.name, "t");
+  ASSERT_EQ(w.robots.size(), 1u);
+  EXPECT_NEAR(w.robots[0].start.theta, M_PI / 2, 1e-12);
+  ASSERT_EQ(w.robots[0].route.size(), 2u);
+  EXPECT_TRUE(w.robots[0].route[1].spin);
+  // One wall and two L corners of two arms each.
+  EXPECT_EQ(w.solids().size(), 1u + 4u);
+}
+
+TEST(WorldLoaderTest, ShippedWorldsLoad) {
+  for (const char* f : {"/worlds/lab.yaml"}) {
+    const World w = loadWorld(kSrc + f);
+    EXPECT_FALSE(w.robots.empty()) << f;
+    EXPECT_EQ(w.home_base.corners.size(), 2u) << f;
+  }
+}
+
+TEST(WorldLoaderTest, NegativeThicknessNamesLineAndField) {
+  const std::string e = errorOf(
+      replaceLine(minimal(), 6, "  - {from: [0, 0], to: [5, 0], thickness: -0.1, texture: a}"));
+  EXPECT_EQ(e,
+            "w.yaml:6:43: walls[0].thickness: expected a positive thickness up to 2 m, got '-0.1'");
+}
+
+TEST(WorldLoaderTest, UnknownTextureListsTheDeclaredOnes) {
+  const std::string e = errorOf(
+      replaceLine(minimal(), 6, "  - {from: [0, 0], to: [5, 0], thickness: 0.1, texture: marble}"));
+  EXPECT_EQ(e,
+            "w.yaml:6:57: walls[0].texture: expected the name of a texture declared under "
+            "'textures' (a), got 'marble'");
+}
+
+TEST(WorldLoaderTest, MissingFieldIsNamed) {
+  const std::string e = errorOf(replaceLine(minimal(), 15, "    route: []"));
+  EXPECT_EQ(e, "w.yaml:13:5: robots[0]: missing required field 'robots[0].start'");
+}
+
+TEST(WorldLoaderTest, TypoInKeyIsCaught) {
+  const std::string e = errorOf(replaceLine(minimal(), 1, "nmae: t"));
+  EXPECT_NE(e.find("w.yaml:1:1: nmae: unknown field 'nmae'"), std::string::npos) << e;
+}
+
+TEST(WorldLoaderTest, WrongCornerCount) {
+  const std::string e = errorOf(replaceLine(minimal(), 10, ""));
+  EXPECT_EQ(e, "w.yaml:9:5: home_base.corners: expected exactly 2 corners, got a list");
+}
+
+TEST(WorldLoaderTest, WaypointOffTheFloor) {
+  const std::string e = errorOf(replaceLine(minimal(), 16, "    route: [[3, 3], [9, 3]]"));
+  EXPECT_EQ(e, "w.yaml:16:21: robots[0].route[1]: expected a waypoint on the floor, got a list");
+}
+
+TEST(WorldLoaderTest, MissingModelFileIsReported) {
+  const std::string e = errorOf(replaceLine(minimal(), 14, "    model: nowhere/b14.yaml"));
+  EXPECT_NE(e.find("w.yaml:14:12: robots[0].model: expected the path of a robot model file"),
+            std::string::npos)
+      << e;
+  EXPECT_NE(e.find("nowhere/b14.yaml does not exist"), std::string::npos) << e;
+}
+
+TEST(WorldLoaderTest, SyntaxErrorNamesTheLine) {
+  const std::string e = errorOf(replaceLine(minimal(), 4, "floor: {min: [0, 0], max: [5, 4"));
+  EXPECT_EQ(e.rfind("w.yaml:", 0), 0u) << e;
+  EXPECT_NE(e.find("YAML syntax error"), std::string::npos) << e;
+}
+
+TEST(WorldLoaderTest, MissingFile) {
+  try {
+    loadWorld("/nonexistent/world.yaml");
+    FAIL();
+  } catch (const ConfigError& e) {
+    EXPECT_STREQ(e.what(), "/nonexistent/world.yaml: cannot open world file");
+  }
+}
+
+}  // namespace
+}  // namespace coopmap::sim
