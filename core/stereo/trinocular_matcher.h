@@ -2,6 +2,7 @@
 // reference pixel and disparity, the window SADs against both partners are summed.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -11,12 +12,33 @@
 
 namespace coopmap {
 
+namespace detail {
+// A pixel's winning disparity, its cost and its neighbours', and the runner-up's cost.
+struct StereoChoice {
+  int d = 0;
+  uint32_t best = 0, second = 0, minus = 0, plus = 0;
+};
+// Where one partner's samples for the pixels of a reference row lie: pixel x's samples for
+// disparities 0, 1, 2, ... start at base + x * stride; the first valid(x) lie inside the
+// partner image, and num_disparities bytes are always readable.
+struct PairRow {
+  const uint8_t* base = nullptr;  // null: the pair is not used
+  ptrdiff_t stride = 0;
+  int valid0 = 0, valid_per_x = 0;  // valid(x) = valid0 + valid_per_x * x ...
+  const int* valid_table = nullptr;  // ... unless a table gives it
+  const uint8_t* samples(int x) const { return base ? base + stride * x : nullptr; }
+  int valid(int x) const {
+    return !base ? 0 : valid_table ? valid_table[x] : valid0 + valid_per_x * x;
+  }
+};
+}  // namespace detail
+
 // Disparity value for pixels that failed validation.
 inline constexpr float kInvalidDisparity = -1.0f;
 
 struct StereoConfig {
   int num_disparities = 32;    // disparities 0 .. num_disparities-1, in reference-baseline px
-  int window = 7;              // odd window side (px)
+  int window = 7;              // odd window side (px), 3..11
   double min_texture = 4.0;    // minimum mean |gradient| in the window (grey levels)
   double uniqueness = 0.10;    // best must beat the runner-up (|d - best| > 1) by this fraction
   bool use_horizontal = true;  // include the horizontal pair
@@ -34,7 +56,9 @@ struct StereoStats {
 };
 
 // Reusable matcher: scratch buffers live here, so repeated frames allocate nothing.
-// Not thread-safe; use one per thread.
+// Costs are aggregated row by row with running box sums over a ring of `window` rows,
+// disparities contiguous so the compiler vectorizes over d (AVX2 chosen at run time where
+// the processor has it). Not thread-safe; use one per thread.
 class TrinocularMatcher {
  public:
   TrinocularMatcher(const TrinocularRig& rig, const StereoConfig& config);
@@ -50,27 +74,31 @@ class TrinocularMatcher {
   const StereoConfig& config() const { return config_; }
 
  private:
-  struct PairShift {
+  // Where a partner's samples for disparities 0, 1, 2, ... of a reference pixel lie.
+  struct Pair {
     bool enabled = false;
-    std::vector<int> du, dv;  // integer image shift of the partner per disparity
+    bool horizontal = true;  // the partner is displaced along x (else along y)
+    double step = -1.0;      // partner image shift (px) per unit of disparity, signed
+    bool unit = true;        // |step| == 1: samples are contiguous in a prepared image
+    cv::Mat prepared;        // unit pairs: rows (or transposed columns) laid out along d
+    std::vector<uint8_t> table;  // other ratios: this row's samples [x][d]
+    std::vector<int> valid;      // other ratios: this row's leading in-image disparities
   };
-  void pairDifferences(const PairShift& pair, const cv::Mat& ref, const cv::Mat& partner, int d,
-                       uint16_t* out);
-  void combinePairs(int d, const cv::Mat& ref, const cv::Mat* partners[2]);
-  void boxFilterInto(uint16_t* out);
+  void preparePair(Pair& pair, const cv::Mat& partner);
+  detail::PairRow pairRow(Pair& pair, const cv::Mat& partner, int y);
+  void computeTexture(const cv::Mat& reference);
 
   TrinocularRig rig_;
   StereoConfig config_;
   double focal_baseline_ = 0.0;
-  PairShift pairs_[2];
+  Pair pairs_[2];
   int width_ = 0, height_ = 0;
-  std::vector<uint16_t> pair_diff_[2];  // per-pair absolute differences, one disparity
-  std::vector<uint16_t> abs_diff_;      // per-pixel combined absolute differences
-  std::vector<uint32_t> column_sum_;    // running vertical window sums
-  std::vector<uint16_t> cost_;          // aggregated costs [d][y][x]
-  std::vector<uint16_t> texture_;       // window sum of |gradient|
-  std::vector<uint16_t> best_cost_;
-  std::vector<uint8_t> best_d_;
+  std::vector<uint16_t> ring_;     // absolute differences of the last window + 1 rows [row][x][d]
+  std::vector<uint16_t> colsum_;   // vertical window sums [x][d]
+  std::vector<uint16_t> cost_;     // aggregated costs of one pixel [d]
+  std::vector<detail::StereoChoice> choices_;  // per pixel of the output row
+  std::vector<uint16_t> texture_;  // window sums of |gradient| [y][x]
+  std::vector<int32_t> tex_col_;   // running column sums for the texture measure
 };
 
 }  // namespace coopmap
