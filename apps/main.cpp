@@ -8,6 +8,8 @@
 #include <CLI/Formatter.hpp>
 
 #include "apps/run_world.h"
+#include "apps/stereo_eval_command.h"
+#include "core/io/json_writer.h"
 #include "core/io/yaml_reader.h"
 
 int main(int argc, char** argv) {
@@ -43,9 +45,99 @@ int main(int argc, char** argv) {
   bool quiet = false;
   cmd_run->add_flag("--quiet", quiet, "No progress bar");
 
+  coopmap::StereoEvalOptions eval;
+  std::string tsukuba;
+  bool json = false;
+  auto* cmd_eval = app.add_subcommand(
+      "stereo-eval",
+      "Score trinocular stereo against ground truth: bad-pixel rate (error > 1 px), mean "
+      "absolute error and density. Sources: an image triple with a truth image, the Tsukuba "
+      "multi-view set (--tsukuba), or frames rendered along a world's route (--world).");
+  cmd_eval->add_option("--tsukuba", tsukuba,
+                       "Tsukuba folder: reference row3.col3, horizontal row3.col4, vertical "
+                       "row2.col3, truth truedisp.row3.col3.pgm / 16")
+      ->check(CLI::ExistingDirectory);
+  cmd_eval->add_option("--reference", eval.reference, "Reference image")->check(CLI::ExistingFile);
+  cmd_eval->add_option("--horizontal", eval.horizontal, "Horizontal partner image")
+      ->check(CLI::ExistingFile);
+  cmd_eval->add_option("--vertical", eval.vertical, "Vertical partner image")
+      ->check(CLI::ExistingFile);
+  cmd_eval->add_option("--truth", eval.truth, "Ground-truth disparity image")
+      ->check(CLI::ExistingFile);
+  cmd_eval->add_option("--truth-scale", eval.truth_scale,
+                       "Truth pixel value per pixel of disparity (Tsukuba: 16)")
+      ->check(CLI::PositiveNumber);
+  cmd_eval->add_option("--horizontal-offset", eval.horizontal_offset,
+                       "Horizontal partner's offset along the reference camera's x (right), in "
+                       "baselines; any sign and length")
+      ->capture_default_str();
+  cmd_eval->add_option("--vertical-offset", eval.vertical_offset,
+                       "Vertical partner's offset along the reference camera's y (down), in "
+                       "baselines of the horizontal pair; any sign and length")
+      ->capture_default_str();
+  cmd_eval->add_option("--rig", eval.rig, "Take the partner offsets (metres) from a robot file")
+      ->check(CLI::ExistingFile);
+  cmd_eval->add_option("--world", eval.world, "Render frames along the first robot's route")
+      ->check(CLI::ExistingFile);
+  cmd_eval->add_option("--frames", eval.frames, "Frames to evaluate from the world run")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  cmd_eval->add_option("--seed", eval.seed, "Seed of the world run")->capture_default_str();
+  cmd_eval->add_option("--disparities", eval.stereo.num_disparities, "Disparities searched")
+      ->capture_default_str();
+  cmd_eval->add_option("--window", eval.stereo.window, "SAD window side (odd, 3..11)")
+      ->capture_default_str();
+  cmd_eval->add_option("--uniqueness", eval.stereo.uniqueness,
+                       "Best must beat the runner-up by this fraction")
+      ->capture_default_str();
+  cmd_eval->add_option("--min-texture", eval.stereo.min_texture,
+                       "Minimum mean |gradient| in the window (grey levels)")
+      ->capture_default_str();
+  cmd_eval->add_option("--pair-consistency", eval.stereo.pair_consistency,
+                       "Fraction each pair's cost at the winner may exceed its own best "
+                       "(negative: off)")
+      ->capture_default_str();
+  cmd_eval->add_option("--border", eval.border, "Pixels skipped on every side")
+      ->capture_default_str();
+  bool single_pair = false;
+  cmd_eval->add_flag("--single-pair", single_pair, "Use the horizontal pair only");
+  cmd_eval->add_option("--png", eval.png_dir,
+                       "Folder for pictures: reference, disparity and truth in colour, errors");
+  cmd_eval->add_flag("--json", json, "Print bad_pixel_rate, mae, density as JSON");
+
   CLI11_PARSE(app, argc, argv);
 
   try {
+    if (cmd_eval->parsed()) {
+      if (!tsukuba.empty()) {
+        eval.reference = tsukuba + "/scene1.row3.col3.ppm";
+        eval.horizontal = tsukuba + "/scene1.row3.col4.ppm";
+        eval.vertical = tsukuba + "/scene1.row2.col3.ppm";
+        eval.truth = tsukuba + "/truedisp.row3.col3.pgm";
+        eval.truth_scale = 16.0;
+        if (cmd_eval->count("--disparities") == 0) eval.stereo.num_disparities = 16;
+      }
+      eval.stereo.use_vertical = !single_pair;
+      if (eval.world.empty() && (eval.reference.empty() || eval.truth.empty()))
+        throw std::invalid_argument(
+            "stereo-eval: expected --tsukuba DIR, --world FILE, or --reference/--horizontal/"
+            "--vertical/--truth");
+      const coopmap::StereoEvalResult r = coopmap::runStereoEval(eval);
+      if (json) {
+        coopmap::JsonWriter j;
+        j.beginObject();
+        j.value("bad_pixel_rate", r.score.bad_pixel_rate).value("mae", r.score.mae);
+        j.value("density", r.score.density).value("frames", r.frames);
+        j.value("evaluated_pixels", r.score.evaluated).value("valid_pixels", r.score.valid);
+        j.endObject();
+        std::printf("%s", j.str().c_str());
+      } else {
+        std::printf("frames %d: bad_pixel_rate %.4f (> 1 px), mae %.3f px, density %.3f "
+                    "(%d of %d pixels with ground truth)\n",
+                    r.frames, r.score.bad_pixel_rate, r.score.mae, r.score.density, r.score.valid,
+                    r.score.evaluated);
+      }
+    }
     if (cmd_run->parsed()) {
       if (robots > 0) run.robots = robots;
       if (!odometry.empty()) run.odometry = odometry;

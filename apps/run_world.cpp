@@ -129,7 +129,15 @@ RunResult runWorld(const RunOptions& opt) {
     for (RobotRun& r : runs) {
       const int i = r.driver->index();
       if (sense) {
-        if (auto frame = r.driver->captureFrame()) {
+        std::optional<TrinocularFrame> frame;
+        cv::Mat depth;
+        if (opt.frame_observer) {
+          frame = sim.capture(i, &depth);
+          opt.frame_observer(r.result.name, *frame, depth);
+        } else {
+          frame = r.driver->captureFrame();
+        }
+        if (frame) {
           r.mapper->process(*frame);
           ++r.result.frames;
         }

@@ -3,12 +3,14 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "core/io/tum.h"
+#include "core/robot/robot_interface.h"
 #include "core/mapping/map_metrics.h"
 
 namespace coopmap {
@@ -21,6 +23,11 @@ struct RunOptions {
   std::optional<int> robots;            // use only the first N robots of the world
   std::optional<std::string> odometry;  // "perfect" or "drifting" overrides the model file
   bool progress = false;                // progress bar on stderr
+  // Called with every sensing frame and its ground-truth depth (reference camera, metres),
+  // for evaluation tools; rendering the depth costs a little, so only when set.
+  std::function<void(const std::string& robot, const TrinocularFrame& frame,
+                     const cv::Mat& truth_depth)>
+      frame_observer;
 };
 
 struct RobotRunResult {

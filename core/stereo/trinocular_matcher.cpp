@@ -9,269 +9,21 @@
 
 #include <opencv2/core.hpp>
 
-#if defined(__x86_64__) && defined(__GNUC__)
-#include <immintrin.h>
-#define COOPMAP_HAVE_AVX2_PATH 1
-#endif
-
-// Hot loops are compiled twice, for AVX2 and for the baseline, and picked at load time.
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && \
-    !defined(__SANITIZE_ADDRESS__)
-#define COOPMAP_SIMD_CLONES __attribute__((target_clones("avx2", "default")))
-#else
-#define COOPMAP_SIMD_CLONES
-#endif
-
 namespace coopmap {
 
 namespace {
-constexpr uint16_t kNoPartnerCost = 255;  // per pair, where no partner sees the pixel
-
 std::string fieldError(const std::string& field, const std::string& expected, double got) {
   return "stereo config: field '" + field + "': expected " + expected + ", got " +
          std::to_string(got);
 }
 
-#define COOPMAP_INLINE inline __attribute__((always_inline))
-
-// Absolute differences of one reference pixel against both partners for every disparity:
-// the sum where both partners see the pixel, twice the one that does where only one does
-// (so costs stay comparable), 2 * kNoPartnerCost where none does. ND > 0 fixes the number
-// of disparities at compile time so the loops unroll.
-template <int ND>
-COOPMAP_INLINE void differencePixel(int r, const uint8_t* __restrict a, int na,
-                                    const uint8_t* __restrict b, int nb, int nd_runtime,
-                                    uint16_t* __restrict o) {
-  const int nd = ND > 0 ? ND : nd_runtime;
-  if (a && b && na >= nd && nb >= nd) {  // the common case: both see every disparity
-    for (int d = 0; d < nd; ++d)
-      o[d] = static_cast<uint16_t>(std::abs(r - a[d]) + std::abs(r - b[d]));
-    return;
-  }
-  if (!b && na >= nd) {  // one pair only
-    for (int d = 0; d < nd; ++d) o[d] = static_cast<uint16_t>(2 * std::abs(r - a[d]));
-    return;
-  }
-  // Near the image borders a partner runs out of samples at some disparity. Every sample
-  // pointer has num_disparities readable bytes (padding): compute all, select per lane.
-  if (a && b) {
-    for (int d = 0; d < nd; ++d) {
-      const int wa = d < na, wb = d < nb;
-      const int sum = wa * std::abs(r - a[d]) + wb * std::abs(r - b[d]);
-      o[d] = static_cast<uint16_t>((wa & wb) ? sum : (wa | wb) ? 2 * sum : 2 * kNoPartnerCost);
-    }
-    return;
-  }
-  const uint8_t* __restrict p = a ? a : b;
-  const int np = a ? na : nb;
-  for (int d = 0; d < nd; ++d)
-    o[d] = static_cast<uint16_t>(d < np ? 2 * std::abs(r - p[d]) : 2 * kNoPartnerCost);
-}
-
-// differencePixel over a reference row; `pa` is the used pair when only one is.
-template <int ND>
-COOPMAP_INLINE void differenceRowT(const uint8_t* ref, int width, int nd_runtime,
-                                   const detail::PairRow& pa, const detail::PairRow& pb,
-                                   uint16_t* out) {
-  const int nd = ND > 0 ? ND : nd_runtime;
-  for (int x = 0; x < width; ++x)
-    differencePixel<ND>(ref[x], pa.samples(x), pa.valid(x), pb.samples(x), pb.valid(x), nd,
-                        out + static_cast<size_t>(x) * nd);
-}
-
-COOPMAP_INLINE void addRow(uint16_t* __restrict sum, const uint16_t* __restrict row, size_t n) {
-  for (size_t i = 0; i < n; ++i) sum[i] = static_cast<uint16_t>(sum[i] + row[i]);
-}
-
-COOPMAP_INLINE void subtractRow(uint16_t* __restrict sum, const uint16_t* __restrict row,
-                                size_t n) {
-  for (size_t i = 0; i < n; ++i) sum[i] = static_cast<uint16_t>(sum[i] - row[i]);
-}
-
-using Choice = detail::StereoChoice;
-
-template <int ND>
-COOPMAP_INLINE Choice choose(const uint16_t* __restrict c, int nd_runtime) {
-  const int nd = ND > 0 ? ND : nd_runtime;
-  // Winner: the smallest (cost, d) packed into one word, so the search vectorizes.
-  uint32_t key = 0xFFFFFFFFu;
-  for (int d = 0; d < nd; ++d) key = std::min(key, (uint32_t(c[d]) << 8) | uint32_t(d));
-  const int bd = static_cast<int>(key & 0xFF);
-  // Runner-up: the best cost away from the winner's immediate neighbours.
-  uint32_t second = 0xFFFF;
-  for (int d = 0; d < nd; ++d) {
-    const bool away = d + 1 < bd || d > bd + 1;
-    second = std::min(second, away ? uint32_t(c[d]) : 0xFFFFu);
-  }
-  return {bd, key >> 8, second, bd > 0 ? c[bd - 1] : 0xFFFFu, bd + 1 < nd ? c[bd + 1] : 0xFFFFu};
-}
-
-// Moves the column sums one row down the image: adds the new row, drops the old one.
-COOPMAP_SIMD_CLONES
-void updateColumnSums(uint16_t* colsum, const uint16_t* add, const uint16_t* drop, size_t n) {
-  if (drop) subtractRow(colsum, drop, n);
-  addRow(colsum, add, n);
-}
-
-// Slides the window along one output row and chooses per pixel (x in [r, width - r)).
-template <int ND>
-COOPMAP_INLINE void chooseRowT(const uint16_t* colsum, int width, int nd_runtime, int window,
-                               uint16_t* cost, Choice* choices) {
-  const int nd = ND > 0 ? ND : nd_runtime;
-  const int r = window / 2;
-  std::fill(cost, cost + nd, 0);
-  for (int x = 0; x < window - 1; ++x) addRow(cost, colsum + x * nd, nd);
-  for (int x = r; x < width - r; ++x) {
-    addRow(cost, colsum + (x + r) * nd, nd);
-    choices[x] = choose<ND>(cost, nd);
-    subtractRow(cost, colsum + (x - r) * nd, nd);
-  }
-}
-#ifdef COOPMAP_HAVE_AVX2_PATH
-// choose() with AVX2 for disparity counts that are multiples of 16: the same result.
-__attribute__((target("avx2"))) inline Choice chooseAvx2(const uint16_t* c, int nd) {
-  __m256i vmin = _mm256_set1_epi16(-1);
-  for (int d = 0; d < nd; d += 16)
-    vmin = _mm256_min_epu16(vmin, _mm256_loadu_si256(reinterpret_cast<const __m256i*>(c + d)));
-  const __m128i m = _mm_min_epu16(_mm256_castsi256_si128(vmin), _mm256_extracti128_si256(vmin, 1));
-  const uint32_t best = static_cast<uint32_t>(_mm_cvtsi128_si32(_mm_minpos_epu16(m)) & 0xFFFF);
-  const __m256i vbest = _mm256_set1_epi16(static_cast<short>(best));
-  int bd = 0;
-  for (int d = 0; d < nd; d += 16) {
-    const __m256i v = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(c + d));
-    const unsigned mask = static_cast<unsigned>(_mm256_movemask_epi8(_mm256_cmpeq_epi16(v, vbest)));
-    if (mask) {
-      bd = d + __builtin_ctz(mask) / 2;
-      break;
-    }
-  }
-  // Runner-up: lanes within one of the winner are masked to 0xFFFF.
-  const __m256i iota = _mm256_setr_epi16(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
-  const __m256i lo = _mm256_set1_epi16(static_cast<short>(bd - 2));
-  const __m256i hi = _mm256_set1_epi16(static_cast<short>(bd + 1));
-  __m256i vsec = _mm256_set1_epi16(-1);
-  for (int d = 0; d < nd; d += 16) {
-    const __m256i idx = _mm256_add_epi16(iota, _mm256_set1_epi16(static_cast<short>(d)));
-    const __m256i near = _mm256_andnot_si256(_mm256_cmpgt_epi16(idx, hi), _mm256_cmpgt_epi16(idx, lo));
-    const __m256i v = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(c + d));
-    vsec = _mm256_min_epu16(vsec, _mm256_or_si256(v, near));
-  }
-  const __m128i s2 = _mm_min_epu16(_mm256_castsi256_si128(vsec), _mm256_extracti128_si256(vsec, 1));
-  const uint32_t second = static_cast<uint32_t>(_mm_cvtsi128_si32(_mm_minpos_epu16(s2)) & 0xFFFF);
-  return {bd, best, second, bd > 0 ? c[bd - 1] : 0xFFFFu, bd + 1 < nd ? c[bd + 1] : 0xFFFFu};
-}
-
-// differenceRowT with the both-partners case in AVX2 (absolute differences in 8 bits,
-// 32 disparities at a time); num_disparities a multiple of 32.
-template <int ND>
-__attribute__((target("avx2"))) void differenceRowAvx2(const uint8_t* ref, int width,
-                                                       const detail::PairRow& pa,
-                                                       const detail::PairRow& pb, uint16_t* out) {
-  constexpr int nd = ND;
-  for (int x = 0; x < width; ++x) {
-    const uint8_t* a = pa.samples(x);
-    const uint8_t* b = pb.samples(x);
-    const int na = pa.valid(x), nb = pb.valid(x);
-    uint16_t* o = out + static_cast<size_t>(x) * nd;
-    if (!(a && b && na >= nd && nb >= nd)) {
-      differencePixel<ND>(ref[x], a, na, b, nb, nd, o);
-      continue;
-    }
-    const __m256i r = _mm256_set1_epi8(static_cast<char>(ref[x]));
-    for (int d = 0; d < nd; d += 32) {
-      const __m256i va = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(a + d));
-      const __m256i vb = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(b + d));
-      const __m256i da = _mm256_sub_epi8(_mm256_max_epu8(r, va), _mm256_min_epu8(r, va));
-      const __m256i db = _mm256_sub_epi8(_mm256_max_epu8(r, vb), _mm256_min_epu8(r, vb));
-      const __m256i lo = _mm256_add_epi16(_mm256_cvtepu8_epi16(_mm256_castsi256_si128(da)),
-                                          _mm256_cvtepu8_epi16(_mm256_castsi256_si128(db)));
-      const __m256i hi = _mm256_add_epi16(_mm256_cvtepu8_epi16(_mm256_extracti128_si256(da, 1)),
-                                          _mm256_cvtepu8_epi16(_mm256_extracti128_si256(db, 1)));
-      _mm256_storeu_si256(reinterpret_cast<__m256i*>(o + d), lo);
-      _mm256_storeu_si256(reinterpret_cast<__m256i*>(o + d + 16), hi);
-    }
-  }
-}
-
-template <int ND>
-__attribute__((target("avx2"))) void chooseRowAvx2T(const uint16_t* colsum, int width, int window,
-                                                    uint16_t* cost, Choice* choices) {
-  const int r = window / 2;
-  std::fill(cost, cost + ND, 0);
-  for (int x = 0; x < window - 1; ++x) addRow(cost, colsum + x * ND, ND);
-  for (int x = r; x < width - r; ++x) {
-    addRow(cost, colsum + (x + r) * ND, ND);
-    choices[x] = chooseAvx2(cost, ND);
-    subtractRow(cost, colsum + (x - r) * ND, ND);
-  }
-}
-
-// True when this processor runs the AVX2 path and `nd` suits it.
-bool chooseRowAvx2(const uint16_t* colsum, int width, int nd, int window, uint16_t* cost,
-                   Choice* choices) {
-  static const bool avx2 = __builtin_cpu_supports("avx2");
-  if (!avx2) return false;
-  switch (nd) {
-    case 16: chooseRowAvx2T<16>(colsum, width, window, cost, choices); return true;
-    case 32: chooseRowAvx2T<32>(colsum, width, window, cost, choices); return true;
-    case 48: chooseRowAvx2T<48>(colsum, width, window, cost, choices); return true;
-    case 64: chooseRowAvx2T<64>(colsum, width, window, cost, choices); return true;
-    default: return false;
-  }
-}
-#endif
-
 // Adds (sign +1) or removes (-1) one row's half L1 central-difference gradient to the
 // texture measure's column sums.
-COOPMAP_SIMD_CLONES
 void accumulateGradient(const uint8_t* __restrict up, const uint8_t* __restrict row,
                         const uint8_t* __restrict dn, int width, int sign,
                         int32_t* __restrict col) {
   for (int x = 1; x < width - 1; ++x)
     col[x] += sign * ((std::abs(row[x + 1] - row[x - 1]) + std::abs(dn[x] - up[x])) >> 1);
-}
-
-// The common disparity counts get unrolled instances; others the general loop.
-#define COOPMAP_DISPATCH_ND(nd, call) \
-  switch (nd) {                       \
-    case 16: call(16); break;         \
-    case 32: call(32); break;         \
-    case 48: call(48); break;         \
-    case 64: call(64); break;         \
-    default: call(0); break;          \
-  }
-
-COOPMAP_SIMD_CLONES
-void differenceRowPortable(const uint8_t* ref, int width, int nd, const detail::PairRow& a,
-                           const detail::PairRow& b, uint16_t* out) {
-#define COOPMAP_CALL(N) differenceRowT<N>(ref, width, nd, a, b, out)
-  COOPMAP_DISPATCH_ND(nd, COOPMAP_CALL)
-#undef COOPMAP_CALL
-}
-
-COOPMAP_SIMD_CLONES
-void chooseRowPortable(const uint16_t* colsum, int width, int nd, int window, uint16_t* cost,
-                       Choice* choices) {
-#define COOPMAP_CALL(N) chooseRowT<N>(colsum, width, nd, window, cost, choices)
-  COOPMAP_DISPATCH_ND(nd, COOPMAP_CALL)
-#undef COOPMAP_CALL
-}
-void differenceRow(const uint8_t* ref, int width, int nd, const detail::PairRow& a,
-                   const detail::PairRow& b, uint16_t* out) {
-#ifdef COOPMAP_HAVE_AVX2_PATH
-  static const bool avx2 = __builtin_cpu_supports("avx2");
-  if (avx2 && nd == 32) return differenceRowAvx2<32>(ref, width, a, b, out);
-  if (avx2 && nd == 64) return differenceRowAvx2<64>(ref, width, a, b, out);
-#endif
-  differenceRowPortable(ref, width, nd, a, b, out);
-}
-
-void chooseRow(const uint16_t* colsum, int width, int nd, int window, uint16_t* cost,
-               Choice* choices) {
-#ifdef COOPMAP_HAVE_AVX2_PATH
-  if (chooseRowAvx2(colsum, width, nd, window, cost, choices)) return;
-#endif
-  chooseRowPortable(colsum, width, nd, window, cost, choices);
 }
 }  // namespace
 
@@ -322,10 +74,13 @@ TrinocularMatcher::TrinocularMatcher(const TrinocularRig& rig, const StereoConfi
     if (!pair.unit) pair.table.assign(static_cast<size_t>(width_) * config_.num_disparities, 0);
   }
   const size_t row = static_cast<size_t>(width_) * config_.num_disparities;
-  ring_.assign(row * (config_.window + 1), 0);
-  colsum_.assign(row, 0);
-  cost_.assign(config_.num_disparities, 0);
-  choices_.assign(width_, Choice{});
+  const int used = (pairs_[0].enabled ? 1 : 0) + (pairs_[1].enabled ? 1 : 0);
+  for (int p = 0; p < used; ++p) {
+    ring_[p].assign(row * (config_.window + 1), 0);
+    colsum_[p].assign(row, 0);
+  }
+  scratch_.assign(3 * static_cast<size_t>(config_.num_disparities), 0);
+  choices_.assign(width_, sad::Choice{});
   texture_.assign(static_cast<size_t>(width_) * height_, 0);
   tex_col_.assign(width_, 0);
 }
@@ -350,8 +105,8 @@ void TrinocularMatcher::preparePair(Pair& pair, const cv::Mat& partner) {
 }
 
 // Where the samples of every pixel of reference row y lie.
-detail::PairRow TrinocularMatcher::pairRow(Pair& pair, const cv::Mat& partner, int y) {
-  detail::PairRow row;
+sad::PairRow TrinocularMatcher::pairRow(Pair& pair, const cv::Mat& partner, int y) {
+  sad::PairRow row;
   if (!pair.enabled) return row;
   const int nd = config_.num_disparities;
   const int n = pair.horizontal ? width_ : height_;  // length of the partner's epipolar line
@@ -392,6 +147,24 @@ detail::PairRow TrinocularMatcher::pairRow(Pair& pair, const cv::Mat& partner, i
   row.stride = nd;
   row.valid_table = pair.valid.data();
   return row;
+}
+
+// Mean absolute difference between reference pixel (x, y) and its partner pixels at
+// integer disparity d (pairs that do not see it are skipped; 0 if none does).
+int TrinocularMatcher::centreDifference(const cv::Mat& reference, const cv::Mat* const partners[2],
+                                        int x, int y, int d) const {
+  const int r = reference.at<uint8_t>(y, x);
+  int sum = 0, n = 0;
+  for (int p = 0; p < 2; ++p) {
+    const Pair& pair = pairs_[p];
+    if (!pair.enabled) continue;
+    const int shift = static_cast<int>(std::lround(pair.step * d));
+    const int px = pair.horizontal ? x + shift : x, py = pair.horizontal ? y : y + shift;
+    if (px < 0 || py < 0 || px >= width_ || py >= height_) continue;
+    sum += std::abs(r - partners[p]->at<uint8_t>(py, px));
+    ++n;
+  }
+  return n ? sum / n : 0;
 }
 
 // Window sums of half the central-difference gradient (L1) of the reference image.
@@ -439,7 +212,10 @@ StereoStats TrinocularMatcher::compute(const cv::Mat& reference, const cv::Mat& 
       static_cast<uint32_t>(std::ceil(config_.min_texture * w * w));
   // Uniqueness in 1/1024ths: reject when second * 1024 <= best * (1024 + u).
   const uint64_t uniq = static_cast<uint64_t>(std::lround(config_.uniqueness * 1024.0));
-  std::fill(colsum_.begin(), colsum_.end(), 0);
+  for (auto& c : colsum_) std::fill(c.begin(), c.end(), 0);
+  const bool both = pairs_[0].enabled && pairs_[1].enabled;
+  const bool check_pairs = both && config_.pair_consistency >= 0.0;
+  const uint64_t pair_tol = static_cast<uint64_t>(std::lround(std::max(0.0, config_.pair_consistency) * 1024.0));
   StereoStats stats;
   stats.rejected_border = 2 * r * width_ + 2 * r * (height_ - 2 * r);
   Pair& a = pairs_[0];
@@ -447,21 +223,25 @@ StereoStats TrinocularMatcher::compute(const cv::Mat& reference, const cv::Mat& 
 
   for (int y = 0; y < height_; ++y) {
     // w + 1 ring slots: row y - w, which leaves the window now, is still in its slot.
-    uint16_t* slot = ring_.data() + row_len * (y % (w + 1));
-    const uint16_t* leaving = ring_.data() + row_len * ((y + 1) % (w + 1));
-    const detail::PairRow ra = pairRow(a, horizontal, y), rb = pairRow(b, vertical, y);
-    differenceRow(reference.ptr<uint8_t>(y), width_, nd, ra.base ? ra : rb, ra.base ? rb : ra,
-                  slot);
-    updateColumnSums(colsum_.data(), slot, y >= w ? leaving : nullptr, row_len);
+    const size_t slot = row_len * (y % (w + 1)), leaving = row_len * ((y + 1) % (w + 1));
+    // With one pair, it is "a" whichever it is.
+    const sad::PairRow ra = pairRow(a, horizontal, y), rb = pairRow(b, vertical, y);
+    sad::differenceRow(reference.ptr<uint8_t>(y), width_, nd, ra.base ? ra : rb,
+                       ra.base ? rb : sad::PairRow{}, ring_[0].data() + slot,
+                       both ? ring_[1].data() + slot : nullptr);
+    for (int p = 0; p < (both ? 2 : 1); ++p)
+      sad::updateColumnSums(colsum_[p].data(), ring_[p].data() + slot,
+                            y >= w ? ring_[p].data() + leaving : nullptr, row_len);
     if (y < w - 1) continue;
 
     // Output row yc: slide the window along x and choose per pixel.
     const int yc = y - r;
     float* out = disparity.ptr<float>(yc);
     const uint16_t* tex = texture_.data() + static_cast<size_t>(yc) * width_;
-    chooseRow(colsum_.data(), width_, nd, w, cost_.data(), choices_.data());
+    sad::chooseRow(colsum_[0].data(), both ? colsum_[1].data() : nullptr, width_, nd, w,
+                   scratch_.data(), choices_.data());
     for (int x = r; x < width_ - r; ++x) {
-      const Choice& ch = choices_[x];
+      const sad::Choice& ch = choices_[x];
       if (tex[x] < min_texture_sum) {
         ++stats.rejected_texture;
         continue;
@@ -472,6 +252,21 @@ StereoStats TrinocularMatcher::compute(const cv::Mat& reference, const cv::Mat& 
       }
       if (uint64_t(ch.second) * 1024 <= uint64_t(ch.best) * (1024 + uniq)) {
         ++stats.rejected_uniqueness;
+        continue;
+      }
+      // Each pair must find the winner (within a disparity) about as good as its own best:
+      // an occlusion or mismatch in one pair shows as a clearly better minimum elsewhere,
+      // while a pair that is merely ambiguous (repeated texture) agrees.
+      if (check_pairs && (uint64_t(ch.near_a) * 1024 > uint64_t(ch.min_a) * (1024 + pair_tol) ||
+                          uint64_t(ch.near_b) * 1024 > uint64_t(ch.min_b) * (1024 + pair_tol))) {
+        ++stats.rejected_consistency;
+        continue;
+      }
+      // The centre pixel itself must match: near depth edges a window can win with its
+      // other pixels while the centre belongs to the surface behind ("fattening").
+      if (config_.max_centre_difference > 0 &&
+          centreDifference(reference, partners, x, yc, ch.d) > config_.max_centre_difference) {
+        ++stats.rejected_centre;
         continue;
       }
       const double denom = double(ch.minus) - 2.0 * ch.best + double(ch.plus);

@@ -9,29 +9,10 @@
 #include <opencv2/core/mat.hpp>
 
 #include "core/geometry/camera.h"
+#include "core/stereo/sad_kernels.h"
 
 namespace coopmap {
 
-namespace detail {
-// A pixel's winning disparity, its cost and its neighbours', and the runner-up's cost.
-struct StereoChoice {
-  int d = 0;
-  uint32_t best = 0, second = 0, minus = 0, plus = 0;
-};
-// Where one partner's samples for the pixels of a reference row lie: pixel x's samples for
-// disparities 0, 1, 2, ... start at base + x * stride; the first valid(x) lie inside the
-// partner image, and num_disparities bytes are always readable.
-struct PairRow {
-  const uint8_t* base = nullptr;  // null: the pair is not used
-  ptrdiff_t stride = 0;
-  int valid0 = 0, valid_per_x = 0;  // valid(x) = valid0 + valid_per_x * x ...
-  const int* valid_table = nullptr;  // ... unless a table gives it
-  const uint8_t* samples(int x) const { return base ? base + stride * x : nullptr; }
-  int valid(int x) const {
-    return !base ? 0 : valid_table ? valid_table[x] : valid0 + valid_per_x * x;
-  }
-};
-}  // namespace detail
 
 // Disparity value for pixels that failed validation.
 inline constexpr float kInvalidDisparity = -1.0f;
@@ -43,6 +24,15 @@ struct StereoConfig {
   double uniqueness = 0.10;    // best must beat the runner-up (|d - best| > 1) by this fraction
   bool use_horizontal = true;  // include the horizontal pair
   bool use_vertical = true;    // include the vertical pair
+  // Consistency between the pairs: at the summed cost's winner (within one disparity) each
+  // pair's cost may exceed its own best by at most this fraction. 0 means each pair's own
+  // winner must lie within one disparity of the summed winner or tie with it: an error in
+  // one pair (an occlusion it alone sees) fails, a pair that is only ambiguous (repeated
+  // texture: equal minima) passes. Negative turns the check off.
+  double pair_consistency = 0.0;
+  // The centre pixel's own mean absolute difference to its partners at the winner may be
+  // at most this (grey levels); catches windows that win across a depth edge. 0: off.
+  int max_centre_difference = 12;
 
   // Throws std::invalid_argument naming the field and the bad value.
   void validate() const;
@@ -52,6 +42,8 @@ struct StereoStats {
   int valid = 0;
   int rejected_texture = 0;
   int rejected_uniqueness = 0;
+  int rejected_consistency = 0;
+  int rejected_centre = 0;
   int rejected_border = 0;
 };
 
@@ -85,19 +77,21 @@ class TrinocularMatcher {
     std::vector<int> valid;      // other ratios: this row's leading in-image disparities
   };
   void preparePair(Pair& pair, const cv::Mat& partner);
-  detail::PairRow pairRow(Pair& pair, const cv::Mat& partner, int y);
+  sad::PairRow pairRow(Pair& pair, const cv::Mat& partner, int y);
   void computeTexture(const cv::Mat& reference);
+  int centreDifference(const cv::Mat& reference, const cv::Mat* const partners[2], int x, int y,
+                       int d) const;
 
   TrinocularRig rig_;
   StereoConfig config_;
   double focal_baseline_ = 0.0;
   Pair pairs_[2];
   int width_ = 0, height_ = 0;
-  std::vector<uint16_t> ring_;     // absolute differences of the last window + 1 rows [row][x][d]
-  std::vector<uint16_t> colsum_;   // vertical window sums [x][d]
-  std::vector<uint16_t> cost_;     // aggregated costs of one pixel [d]
-  std::vector<detail::StereoChoice> choices_;  // per pixel of the output row
-  std::vector<uint16_t> texture_;  // window sums of |gradient| [y][x]
+  std::vector<uint8_t> ring_[2];     // differences of the last window + 1 rows [row][x][d]
+  std::vector<uint16_t> colsum_[2];  // vertical window sums per pair [x][d]
+  std::vector<uint16_t> scratch_;    // sliding sums of one pixel per pair, and their sum
+  std::vector<sad::Choice> choices_;  // per pixel of the output row
+  std::vector<uint16_t> texture_;    // window sums of |gradient| [y][x]
   std::vector<int32_t> tex_col_;   // running column sums for the texture measure
 };
 
