@@ -71,6 +71,11 @@ COOPMAP_INLINE void subtractRow(uint16_t* __restrict sum, const uint16_t* __rest
   for (int i = 0; i < n; ++i) sum[i] = static_cast<uint16_t>(sum[i] - row[i]);
 }
 
+// The runner-up loses by more than uniqueness / 1024 of the best.
+COOPMAP_INLINE bool unique(const Choice& ch, uint32_t uniqueness) {
+  return uint64_t(ch.second) * 1024 > uint64_t(ch.best) * (1024 + uniqueness);
+}
+
 // The smallest of c[d - 1], c[d], c[d + 1].
 COOPMAP_INLINE uint32_t nearBest(const uint16_t* c, int nd, int d) {
   uint32_t m = c[d];
@@ -108,7 +113,8 @@ COOPMAP_INLINE Choice choose(const uint16_t* __restrict c, int nd_runtime) {
 
 template <int ND>
 COOPMAP_INLINE void chooseRowT(const uint16_t* colsum_a, const uint16_t* colsum_b, int width,
-                               int nd_runtime, int window, uint16_t* scratch, Choice* choices) {
+                               int nd_runtime, int window, const uint8_t* skip,
+                               uint32_t uniqueness, uint16_t* scratch, Choice* choices) {
   const int nd = ND > 0 ? ND : nd_runtime;
   const int r = window / 2;
   uint16_t* ca = scratch;
@@ -124,15 +130,19 @@ COOPMAP_INLINE void chooseRowT(const uint16_t* colsum_a, const uint16_t* colsum_
     if (colsum_b) {
       addRow(cb, colsum_b + (x + r) * nd, nd);
       for (int d = 0; d < nd; ++d) c[d] = static_cast<uint16_t>(ca[d] + cb[d]);
-      Choice ch = choose<ND>(c, nd);
-      ch.min_a = ca[argmin<ND>(ca, nd)];
-      ch.min_b = cb[argmin<ND>(cb, nd)];
-      ch.near_a = nearBest(ca, nd, ch.d);
-      ch.near_b = nearBest(cb, nd, ch.d);
-      choices[x] = ch;
+      if (!skip[x]) {
+        Choice ch = choose<ND>(c, nd);
+        if (unique(ch, uniqueness)) {  // the pairs' own minima only matter then
+          ch.min_a = ca[argmin<ND>(ca, nd)];
+          ch.min_b = cb[argmin<ND>(cb, nd)];
+          ch.near_a = nearBest(ca, nd, ch.d);
+          ch.near_b = nearBest(cb, nd, ch.d);
+        }
+        choices[x] = ch;
+      }
       subtractRow(cb, colsum_b + (x - r) * nd, nd);
     } else {
-      choices[x] = choose<ND>(ca, nd);
+      if (!skip[x]) choices[x] = choose<ND>(ca, nd);
     }
     subtractRow(ca, colsum_a + (x - r) * nd, nd);
   }
@@ -158,8 +168,10 @@ void differenceRowPortable(const uint8_t* ref, int width, int nd, const PairRow&
 
 COOPMAP_SIMD_CLONES
 void chooseRowPortable(const uint16_t* colsum_a, const uint16_t* colsum_b, int width, int nd,
-                       int window, uint16_t* scratch, Choice* choices) {
-#define COOPMAP_CALL(N) chooseRowT<N>(colsum_a, colsum_b, width, nd, window, scratch, choices)
+                       int window, const uint8_t* skip, uint32_t uniqueness, uint16_t* scratch,
+                       Choice* choices) {
+#define COOPMAP_CALL(N) \
+  chooseRowT<N>(colsum_a, colsum_b, width, nd, window, skip, uniqueness, scratch, choices)
   COOPMAP_DISPATCH_ND(nd, COOPMAP_CALL)
 #undef COOPMAP_CALL
 }
@@ -181,18 +193,34 @@ __attribute__((target("avx2"))) void differenceRowAvx2(const uint8_t* ref, int w
     const int na = pa.valid(x), nb = pb.valid(x);
     uint8_t* oa = out_a + static_cast<size_t>(x) * ND;
     uint8_t* ob = out_b + static_cast<size_t>(x) * ND;
-    if (!(na >= ND && nb >= ND)) {
-      differencePixel<ND>(ref[x], a, na, b, nb, ND, oa, ob);
+    const __m256i r = _mm256_set1_epi8(static_cast<char>(ref[x]));
+    if (na >= ND && nb >= ND) {  // the common case
+      for (int d = 0; d < ND; d += 32) {
+        const __m256i va = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(a + d));
+        const __m256i vb = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(b + d));
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(oa + d),
+                            _mm256_sub_epi8(_mm256_max_epu8(r, va), _mm256_min_epu8(r, va)));
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(ob + d),
+                            _mm256_sub_epi8(_mm256_max_epu8(r, vb), _mm256_min_epu8(r, vb)));
+      }
       continue;
     }
-    const __m256i r = _mm256_set1_epi8(static_cast<char>(ref[x]));
+    // Near the borders: the same rule as differencePixel, lane by lane with blends.
+    const __m256i iota = _mm256_setr_epi8(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16,
+                                          17, 18, 19, 20, 21, 22, 23, 24, 25, 26, 27, 28, 29, 30, 31);
+    const __m256i unseen = _mm256_set1_epi8(static_cast<char>(kUnseen));
     for (int d = 0; d < ND; d += 32) {
+      const __m256i idx = _mm256_add_epi8(iota, _mm256_set1_epi8(static_cast<char>(d)));
+      const __m256i wa = _mm256_cmpgt_epi8(_mm256_set1_epi8(static_cast<char>(std::min(na, ND))), idx);
+      const __m256i wb = _mm256_cmpgt_epi8(_mm256_set1_epi8(static_cast<char>(std::min(nb, ND))), idx);
       const __m256i va = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(a + d));
       const __m256i vb = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(b + d));
+      const __m256i da = _mm256_sub_epi8(_mm256_max_epu8(r, va), _mm256_min_epu8(r, va));
+      const __m256i db = _mm256_sub_epi8(_mm256_max_epu8(r, vb), _mm256_min_epu8(r, vb));
       _mm256_storeu_si256(reinterpret_cast<__m256i*>(oa + d),
-                          _mm256_sub_epi8(_mm256_max_epu8(r, va), _mm256_min_epu8(r, va)));
+                          _mm256_blendv_epi8(_mm256_blendv_epi8(unseen, db, wb), da, wa));
       _mm256_storeu_si256(reinterpret_cast<__m256i*>(ob + d),
-                          _mm256_sub_epi8(_mm256_max_epu8(r, vb), _mm256_min_epu8(r, vb)));
+                          _mm256_blendv_epi8(_mm256_blendv_epi8(unseen, da, wa), db, wb));
     }
   }
 }
@@ -250,36 +278,58 @@ __attribute__((target("avx2"))) inline Choice chooseAvx2(const uint16_t* c) {
   return ch;
 }
 
+__attribute__((target("avx2"))) inline __m256i load(const uint16_t* p) {
+  return _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p));
+}
+
+// chooseRowT in AVX2 with the sliding sums held in registers (ND / 16 vectors per pair).
 template <int ND>
 __attribute__((target("avx2"))) void chooseRowAvx2(const uint16_t* colsum_a,
                                                    const uint16_t* colsum_b, int width,
-                                                   int window, uint16_t* scratch,
+                                                   int window, const uint8_t* skip,
+                                                   uint32_t uniqueness, uint16_t*,
                                                    Choice* choices) {
+  constexpr int kV = ND / 16;
   const int r = window / 2;
-  uint16_t* ca = scratch;
-  uint16_t* cb = scratch + ND;
-  uint16_t* c = scratch + 2 * ND;
-  std::fill(scratch, scratch + 3 * ND, 0);
-  for (int x = 0; x < window - 1; ++x) {
-    addRow(ca, colsum_a + x * ND, ND);
-    if (colsum_b) addRow(cb, colsum_b + x * ND, ND);
-  }
-  for (int x = r; x < width - r; ++x) {
-    addRow(ca, colsum_a + (x + r) * ND, ND);
-    if (colsum_b) {
-      addRow(cb, colsum_b + (x + r) * ND, ND);
-      for (int d = 0; d < ND; ++d) c[d] = static_cast<uint16_t>(ca[d] + cb[d]);
-      Choice ch = chooseAvx2<ND>(c);
-      ch.min_a = minAvx2<ND>(ca);
-      ch.min_b = minAvx2<ND>(cb);
-      ch.near_a = nearBest(ca, ND, ch.d);
-      ch.near_b = nearBest(cb, ND, ch.d);
-      choices[x] = ch;
-      subtractRow(cb, colsum_b + (x - r) * ND, ND);
-    } else {
-      choices[x] = chooseAvx2<ND>(ca);
+  __m256i ca[kV], cb[kV];
+  for (int k = 0; k < kV; ++k) ca[k] = cb[k] = _mm256_setzero_si256();
+  const bool two = colsum_b != nullptr;
+  for (int x = 0; x < window - 1; ++x)
+    for (int k = 0; k < kV; ++k) {
+      ca[k] = _mm256_add_epi16(ca[k], load(colsum_a + x * ND + 16 * k));
+      if (two) cb[k] = _mm256_add_epi16(cb[k], load(colsum_b + x * ND + 16 * k));
     }
-    subtractRow(ca, colsum_a + (x - r) * ND, ND);
+  alignas(32) uint16_t c[ND], a[ND], b[ND];
+  for (int x = r; x < width - r; ++x) {
+    for (int k = 0; k < kV; ++k) {
+      ca[k] = _mm256_add_epi16(ca[k], load(colsum_a + (x + r) * ND + 16 * k));
+      if (two) cb[k] = _mm256_add_epi16(cb[k], load(colsum_b + (x + r) * ND + 16 * k));
+    }
+    if (!skip[x]) {
+      for (int k = 0; k < kV; ++k) {
+        const __m256i sum = two ? _mm256_add_epi16(ca[k], cb[k]) : ca[k];
+        _mm256_store_si256(reinterpret_cast<__m256i*>(c + 16 * k), sum);
+      }
+      Choice ch = chooseAvx2<ND>(c);
+      if (two && unique(ch, uniqueness)) {  // the pairs' own minima only matter then
+        __m256i ma = ca[0], mb = cb[0];
+        for (int k = 0; k < kV; ++k) {
+          ma = _mm256_min_epu16(ma, ca[k]);
+          mb = _mm256_min_epu16(mb, cb[k]);
+          _mm256_store_si256(reinterpret_cast<__m256i*>(a + 16 * k), ca[k]);
+          _mm256_store_si256(reinterpret_cast<__m256i*>(b + 16 * k), cb[k]);
+        }
+        ch.min_a = horizontalMin(ma);
+        ch.min_b = horizontalMin(mb);
+        ch.near_a = nearBest(a, ND, ch.d);
+        ch.near_b = nearBest(b, ND, ch.d);
+      }
+      choices[x] = ch;
+    }
+    for (int k = 0; k < kV; ++k) {
+      ca[k] = _mm256_sub_epi16(ca[k], load(colsum_a + (x - r) * ND + 16 * k));
+      if (two) cb[k] = _mm256_sub_epi16(cb[k], load(colsum_b + (x - r) * ND + 16 * k));
+    }
   }
 }
 #endif
@@ -308,19 +358,19 @@ void updateColumnSums(uint16_t* __restrict colsum, const uint8_t* __restrict add
 }
 
 void chooseRow(const uint16_t* colsum_a, const uint16_t* colsum_b, int width, int nd, int window,
-               uint16_t* scratch, Choice* choices) {
+               const uint8_t* skip, uint32_t uniqueness, uint16_t* scratch, Choice* choices) {
 #ifdef COOPMAP_HAVE_AVX2_PATH
   if (haveAvx2()) {
     switch (nd) {
-      case 16: return chooseRowAvx2<16>(colsum_a, colsum_b, width, window, scratch, choices);
-      case 32: return chooseRowAvx2<32>(colsum_a, colsum_b, width, window, scratch, choices);
-      case 48: return chooseRowAvx2<48>(colsum_a, colsum_b, width, window, scratch, choices);
-      case 64: return chooseRowAvx2<64>(colsum_a, colsum_b, width, window, scratch, choices);
+      case 16: return chooseRowAvx2<16>(colsum_a, colsum_b, width, window, skip, uniqueness, scratch, choices);
+      case 32: return chooseRowAvx2<32>(colsum_a, colsum_b, width, window, skip, uniqueness, scratch, choices);
+      case 48: return chooseRowAvx2<48>(colsum_a, colsum_b, width, window, skip, uniqueness, scratch, choices);
+      case 64: return chooseRowAvx2<64>(colsum_a, colsum_b, width, window, skip, uniqueness, scratch, choices);
       default: break;
     }
   }
 #endif
-  chooseRowPortable(colsum_a, colsum_b, width, nd, window, scratch, choices);
+  chooseRowPortable(colsum_a, colsum_b, width, nd, window, skip, uniqueness, scratch, choices);
 }
 
 }  // namespace coopmap::sad

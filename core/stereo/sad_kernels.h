@@ -42,9 +42,11 @@ void differenceRow(const uint8_t* ref, int width, int nd, const PairRow& a, cons
 void updateColumnSums(uint16_t* colsum, const uint8_t* add, const uint8_t* drop, size_t n);
 
 // Slides a window x window box along one output row of column sums ([x][d]) and chooses
-// per pixel x in [window / 2, width - window / 2). colsum_b null: one pair only. `scratch`
-// holds 3 * nd entries.
+// per pixel x in [window / 2, width - window / 2) where skip[x] is 0 (others are left as
+// they were). colsum_b null: one pair only. The pairs' own minima are only filled in where
+// the winner is unique (runner-up worse by more than uniqueness / 1024; else they stay 0).
+// `scratch` holds 3 * nd entries.
 void chooseRow(const uint16_t* colsum_a, const uint16_t* colsum_b, int width, int nd, int window,
-               uint16_t* scratch, Choice* choices);
+               const uint8_t* skip, uint32_t uniqueness, uint16_t* scratch, Choice* choices);
 
 }  // namespace coopmap::sad

@@ -81,6 +81,7 @@ TrinocularMatcher::TrinocularMatcher(const TrinocularRig& rig, const StereoConfi
   }
   scratch_.assign(3 * static_cast<size_t>(config_.num_disparities), 0);
   choices_.assign(width_, sad::Choice{});
+  skip_.assign(width_, 0);
   texture_.assign(static_cast<size_t>(width_) * height_, 0);
   tex_col_.assign(width_, 0);
 }
@@ -147,24 +148,6 @@ sad::PairRow TrinocularMatcher::pairRow(Pair& pair, const cv::Mat& partner, int 
   row.stride = nd;
   row.valid_table = pair.valid.data();
   return row;
-}
-
-// Mean absolute difference between reference pixel (x, y) and its partner pixels at
-// integer disparity d (pairs that do not see it are skipped; 0 if none does).
-int TrinocularMatcher::centreDifference(const cv::Mat& reference, const cv::Mat* const partners[2],
-                                        int x, int y, int d) const {
-  const int r = reference.at<uint8_t>(y, x);
-  int sum = 0, n = 0;
-  for (int p = 0; p < 2; ++p) {
-    const Pair& pair = pairs_[p];
-    if (!pair.enabled) continue;
-    const int shift = static_cast<int>(std::lround(pair.step * d));
-    const int px = pair.horizontal ? x + shift : x, py = pair.horizontal ? y : y + shift;
-    if (px < 0 || py < 0 || px >= width_ || py >= height_) continue;
-    sum += std::abs(r - partners[p]->at<uint8_t>(py, px));
-    ++n;
-  }
-  return n ? sum / n : 0;
 }
 
 // Window sums of half the central-difference gradient (L1) of the reference image.
@@ -238,11 +221,13 @@ StereoStats TrinocularMatcher::compute(const cv::Mat& reference, const cv::Mat& 
     const int yc = y - r;
     float* out = disparity.ptr<float>(yc);
     const uint16_t* tex = texture_.data() + static_cast<size_t>(yc) * width_;
+    const uint8_t* ref_row = reference.ptr<uint8_t>(yc);
+    for (int x = 0; x < width_; ++x) skip_[x] = tex[x] < min_texture_sum;
     sad::chooseRow(colsum_[0].data(), both ? colsum_[1].data() : nullptr, width_, nd, w,
-                   scratch_.data(), choices_.data());
+                   skip_.data(), static_cast<uint32_t>(uniq), scratch_.data(), choices_.data());
     for (int x = r; x < width_ - r; ++x) {
       const sad::Choice& ch = choices_[x];
-      if (tex[x] < min_texture_sum) {
+      if (skip_[x]) {
         ++stats.rejected_texture;
         continue;
       }
@@ -265,7 +250,7 @@ StereoStats TrinocularMatcher::compute(const cv::Mat& reference, const cv::Mat& 
       // The centre pixel itself must match: near depth edges a window can win with its
       // other pixels while the centre belongs to the surface behind ("fattening").
       if (config_.max_centre_difference > 0 &&
-          centreDifference(reference, partners, x, yc, ch.d) > config_.max_centre_difference) {
+          centreDifference(ref_row, partners, x, yc, ch.d) > config_.max_centre_difference) {
         ++stats.rejected_centre;
         continue;
       }

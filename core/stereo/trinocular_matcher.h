@@ -79,8 +79,24 @@ class TrinocularMatcher {
   void preparePair(Pair& pair, const cv::Mat& partner);
   sad::PairRow pairRow(Pair& pair, const cv::Mat& partner, int y);
   void computeTexture(const cv::Mat& reference);
-  int centreDifference(const cv::Mat& reference, const cv::Mat* const partners[2], int x, int y,
-                       int d) const;
+  // Mean absolute difference between reference pixel (x, y) (its row given) and its
+  // partner pixels at integer disparity d; pairs that do not see it are skipped.
+  int centreDifference(const uint8_t* ref_row, const cv::Mat* const partners[2], int x, int y,
+                       int d) const {
+    int sum = 0, n = 0;
+    for (int p = 0; p < 2; ++p) {
+      const Pair& pair = pairs_[p];
+      if (!pair.enabled) continue;
+      const int shift = pair.unit ? (pair.step < 0 ? -d : d)
+                                  : static_cast<int>(pair.step * d + (pair.step < 0 ? -0.5 : 0.5));
+      const int px = pair.horizontal ? x + shift : x, py = pair.horizontal ? y : y + shift;
+      if (px < 0 || py < 0 || px >= width_ || py >= height_) continue;
+      const int diff = ref_row[x] - partners[p]->ptr<uint8_t>(py)[px];
+      sum += diff < 0 ? -diff : diff;
+      ++n;
+    }
+    return n ? sum / n : 0;
+  }
 
   TrinocularRig rig_;
   StereoConfig config_;
@@ -91,6 +107,7 @@ class TrinocularMatcher {
   std::vector<uint16_t> colsum_[2];  // vertical window sums per pair [x][d]
   std::vector<uint16_t> scratch_;    // sliding sums of one pixel per pair, and their sum
   std::vector<sad::Choice> choices_;  // per pixel of the output row
+  std::vector<uint8_t> skip_;         // per pixel of the output row: too little texture
   std::vector<uint16_t> texture_;    // window sums of |gradient| [y][x]
   std::vector<int32_t> tex_col_;   // running column sums for the texture measure
 };
