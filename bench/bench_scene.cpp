@@ -1,41 +1,27 @@
 #include "bench/bench_scene.h"
 
 #include <cmath>
+#include <map>
+#include <utility>
 
 #include "sim/world/world.h"
 
 namespace coopmap::bench {
 
-BenchScene& labScene() {
-  static BenchScene* scene = [] {
-    auto* s = new BenchScene;
+BenchScene& labScene(int width, int height) {
+  static std::map<std::pair<int, int>, std::unique_ptr<BenchScene>> scenes;
+  auto& slot = scenes[{width, height}];
+  if (!slot) {
+    slot = std::make_unique<BenchScene>();
+    BenchScene& s = *slot;
     const sim::World world = sim::loadWorld(std::string(COOPMAP_SOURCE_DIR) + "/worlds/lab.yaml");
-    s->model = loadRobotModel(world.robots[0].model_file);
-    s->sim = std::make_unique<sim::Simulator>(world, 1);
-    s->sim->addRobot(world.robots[0], {s->model.description, s->model.drive, s->model.odometry});
-    s->frame = s->sim->capture(0, &s->truth_depth);
-    return s;
-  }();
-  return *scene;
-}
-
-StereoScore score(const cv::Mat& disparity, const cv::Mat& truth_depth, double focal_baseline,
-                  int border) {
-  int total = 0, valid = 0, bad = 0;
-  for (int v = border; v < disparity.rows - border; ++v)
-    for (int u = border; u < disparity.cols - border; ++u) {
-      const float z = truth_depth.at<float>(v, u);
-      if (!(z > 0.0f)) continue;
-      ++total;
-      const float d = disparity.at<float>(v, u);
-      if (!(d > 0.0f)) continue;
-      ++valid;
-      bad += std::abs(d - focal_baseline / z) > 1.0;
-    }
-  StereoScore s;
-  s.density = total ? double(valid) / total : 0.0;
-  s.bad_pixel_rate = valid ? double(bad) / valid : 0.0;
-  return s;
+    s.model = loadRobotModel(world.robots[0].model_file);
+    s.model.description.rig.intrinsics = CameraIntrinsics::fromFov(width, height, M_PI / 2);
+    s.sim = std::make_unique<sim::Simulator>(world, 1);
+    s.sim->addRobot(world.robots[0], {s.model.description, s.model.drive, s.model.odometry});
+    s.frame = s.sim->capture(0, &s.truth_depth);
+  }
+  return *slot;
 }
 
 }  // namespace coopmap::bench

@@ -15,15 +15,8 @@ struct BenchScene {
   cv::Mat truth_depth;    // reference camera, metres along the optical axis
 };
 
-// Built once per process.
-BenchScene& labScene();
+// Built once per process and image size (90 degree horizontal field of view).
+BenchScene& labScene(int width = 160, int height = 120);
 
-// Bad-pixel rate (> 1 px) and density of a disparity image against the truth depth.
-struct StereoScore {
-  double bad_pixel_rate = 0.0;
-  double density = 0.0;
-};
-StereoScore score(const cv::Mat& disparity, const cv::Mat& truth_depth, double focal_baseline,
-                  int border);
 
 }  // namespace coopmap::bench

@@ -195,7 +195,8 @@ __attribute__((target("avx2"))) void differenceRowAvx2(const uint8_t* ref, int w
     uint8_t* ob = out_b + static_cast<size_t>(x) * ND;
     const __m256i r = _mm256_set1_epi8(static_cast<char>(ref[x]));
     if (na >= ND && nb >= ND) {  // the common case
-      for (int d = 0; d < ND; d += 32) {
+      int d = 0;
+      for (; d + 32 <= ND; d += 32) {
         const __m256i va = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(a + d));
         const __m256i vb = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(b + d));
         _mm256_storeu_si256(reinterpret_cast<__m256i*>(oa + d),
@@ -203,13 +204,23 @@ __attribute__((target("avx2"))) void differenceRowAvx2(const uint8_t* ref, int w
         _mm256_storeu_si256(reinterpret_cast<__m256i*>(ob + d),
                             _mm256_sub_epi8(_mm256_max_epu8(r, vb), _mm256_min_epu8(r, vb)));
       }
+      if (d < ND) {  // a last 16
+        const __m128i r16 = _mm256_castsi256_si128(r);
+        const __m128i va = _mm_loadu_si128(reinterpret_cast<const __m128i*>(a + d));
+        const __m128i vb = _mm_loadu_si128(reinterpret_cast<const __m128i*>(b + d));
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(oa + d),
+                         _mm_sub_epi8(_mm_max_epu8(r16, va), _mm_min_epu8(r16, va)));
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(ob + d),
+                         _mm_sub_epi8(_mm_max_epu8(r16, vb), _mm_min_epu8(r16, vb)));
+      }
       continue;
     }
     // Near the borders: the same rule as differencePixel, lane by lane with blends.
     const __m256i iota = _mm256_setr_epi8(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16,
                                           17, 18, 19, 20, 21, 22, 23, 24, 25, 26, 27, 28, 29, 30, 31);
     const __m256i unseen = _mm256_set1_epi8(static_cast<char>(kUnseen));
-    for (int d = 0; d < ND; d += 32) {
+    int d = 0;
+    for (; d + 32 <= ND; d += 32) {
       const __m256i idx = _mm256_add_epi8(iota, _mm256_set1_epi8(static_cast<char>(d)));
       const __m256i wa = _mm256_cmpgt_epi8(_mm256_set1_epi8(static_cast<char>(std::min(na, ND))), idx);
       const __m256i wb = _mm256_cmpgt_epi8(_mm256_set1_epi8(static_cast<char>(std::min(nb, ND))), idx);
@@ -221,6 +232,18 @@ __attribute__((target("avx2"))) void differenceRowAvx2(const uint8_t* ref, int w
                           _mm256_blendv_epi8(_mm256_blendv_epi8(unseen, db, wb), da, wa));
       _mm256_storeu_si256(reinterpret_cast<__m256i*>(ob + d),
                           _mm256_blendv_epi8(_mm256_blendv_epi8(unseen, da, wa), db, wb));
+    }
+    if (d < ND) {  // a last 16
+      const __m128i r16 = _mm256_castsi256_si128(r), u16 = _mm256_castsi256_si128(unseen);
+      const __m128i idx = _mm_add_epi8(_mm256_castsi256_si128(iota), _mm_set1_epi8(static_cast<char>(d)));
+      const __m128i wa = _mm_cmpgt_epi8(_mm_set1_epi8(static_cast<char>(std::min(na, ND))), idx);
+      const __m128i wb = _mm_cmpgt_epi8(_mm_set1_epi8(static_cast<char>(std::min(nb, ND))), idx);
+      const __m128i va = _mm_loadu_si128(reinterpret_cast<const __m128i*>(a + d));
+      const __m128i vb = _mm_loadu_si128(reinterpret_cast<const __m128i*>(b + d));
+      const __m128i da = _mm_sub_epi8(_mm_max_epu8(r16, va), _mm_min_epu8(r16, va));
+      const __m128i db = _mm_sub_epi8(_mm_max_epu8(r16, vb), _mm_min_epu8(r16, vb));
+      _mm_storeu_si128(reinterpret_cast<__m128i*>(oa + d), _mm_blendv_epi8(_mm_blendv_epi8(u16, db, wb), da, wa));
+      _mm_storeu_si128(reinterpret_cast<__m128i*>(ob + d), _mm_blendv_epi8(_mm_blendv_epi8(u16, da, wa), db, wb));
     }
   }
 }
@@ -341,6 +364,7 @@ void differenceRow(const uint8_t* ref, int width, int nd, const PairRow& a, cons
 #ifdef COOPMAP_HAVE_AVX2_PATH
   if (haveAvx2() && a.base && b.base) {
     if (nd == 32) return differenceRowAvx2<32>(ref, width, a, b, out_a, out_b);
+    if (nd == 48) return differenceRowAvx2<48>(ref, width, a, b, out_a, out_b);
     if (nd == 64) return differenceRowAvx2<64>(ref, width, a, b, out_a, out_b);
   }
 #endif
