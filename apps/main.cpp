@@ -53,9 +53,10 @@ int main(int argc, char** argv) {
       "Score trinocular stereo against ground truth: bad-pixel rate (error > 1 px), mean "
       "absolute error and density. Sources: an image triple with a truth image, the Tsukuba "
       "multi-view set (--tsukuba), or frames rendered along a world's route (--world).");
-  cmd_eval->add_option("--tsukuba", tsukuba,
-                       "Tsukuba folder: reference row3.col3, horizontal row3.col4, vertical "
-                       "row2.col3, truth truedisp.row3.col3.pgm / 16")
+  cmd_eval
+      ->add_option("--tsukuba", tsukuba,
+                   "Tsukuba folder: reference row3.col3, horizontal row3.col4, vertical "
+                   "row2.col3, truth truedisp.row3.col3.pgm / 16")
       ->check(CLI::ExistingDirectory);
   cmd_eval->add_option("--reference", eval.reference, "Reference image")->check(CLI::ExistingFile);
   cmd_eval->add_option("--horizontal", eval.horizontal, "Horizontal partner image")
@@ -64,16 +65,19 @@ int main(int argc, char** argv) {
       ->check(CLI::ExistingFile);
   cmd_eval->add_option("--truth", eval.truth, "Ground-truth disparity image")
       ->check(CLI::ExistingFile);
-  cmd_eval->add_option("--truth-scale", eval.truth_scale,
-                       "Truth pixel value per pixel of disparity (Tsukuba: 16)")
+  cmd_eval
+      ->add_option("--truth-scale", eval.truth_scale,
+                   "Truth pixel value per pixel of disparity (Tsukuba: 16)")
       ->check(CLI::PositiveNumber);
-  cmd_eval->add_option("--horizontal-offset", eval.horizontal_offset,
-                       "Horizontal partner's offset along the reference camera's x (right), in "
-                       "baselines; any sign and length")
+  cmd_eval
+      ->add_option("--horizontal-offset", eval.horizontal_offset,
+                   "Horizontal partner's offset along the reference camera's x (right), in "
+                   "baselines; any sign and length")
       ->capture_default_str();
-  cmd_eval->add_option("--vertical-offset", eval.vertical_offset,
-                       "Vertical partner's offset along the reference camera's y (down), in "
-                       "baselines of the horizontal pair; any sign and length")
+  cmd_eval
+      ->add_option("--vertical-offset", eval.vertical_offset,
+                   "Vertical partner's offset along the reference camera's y (down), in "
+                   "baselines of the horizontal pair; any sign and length")
       ->capture_default_str();
   cmd_eval->add_option("--rig", eval.rig, "Take the partner offsets (metres) from a robot file")
       ->check(CLI::ExistingFile);
@@ -87,15 +91,18 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   cmd_eval->add_option("--window", eval.stereo.window, "SAD window side (odd, 3..11)")
       ->capture_default_str();
-  cmd_eval->add_option("--uniqueness", eval.stereo.uniqueness,
-                       "Best must beat the runner-up by this fraction")
+  cmd_eval
+      ->add_option("--uniqueness", eval.stereo.uniqueness,
+                   "Best must beat the runner-up by this fraction")
       ->capture_default_str();
-  cmd_eval->add_option("--min-texture", eval.stereo.min_texture,
-                       "Minimum mean |gradient| in the window (grey levels)")
+  cmd_eval
+      ->add_option("--min-texture", eval.stereo.min_texture,
+                   "Minimum mean |gradient| in the window (grey levels)")
       ->capture_default_str();
-  cmd_eval->add_option("--pair-consistency", eval.stereo.pair_consistency,
-                       "Fraction each pair's cost at the winner may exceed its own best "
-                       "(negative: off)")
+  cmd_eval
+      ->add_option("--pair-consistency", eval.stereo.pair_consistency,
+                   "Fraction each pair's cost at the winner may exceed its own best "
+                   "(negative: off)")
       ->capture_default_str();
   cmd_eval->add_option("--border", eval.border, "Pixels skipped on every side")
       ->capture_default_str();
@@ -132,10 +139,11 @@ int main(int argc, char** argv) {
         j.endObject();
         std::printf("%s", j.str().c_str());
       } else {
-        std::printf("frames %d: bad_pixel_rate %.4f (> 1 px), mae %.3f px, density %.3f "
-                    "(%d of %d pixels with ground truth)\n",
-                    r.frames, r.score.bad_pixel_rate, r.score.mae, r.score.density, r.score.valid,
-                    r.score.evaluated);
+        std::printf(
+            "frames %d: bad_pixel_rate %.4f (> 1 px), mae %.3f px, density %.3f "
+            "(%d of %d pixels with ground truth)\n",
+            r.frames, r.score.bad_pixel_rate, r.score.mae, r.score.density, r.score.valid,
+            r.score.evaluated);
       }
     }
     if (cmd_run->parsed()) {

@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "core/io/tum.h"
-#include "core/robot/robot_interface.h"
 #include "core/mapping/map_metrics.h"
+#include "core/robot/robot_interface.h"
 
 namespace coopmap {
 

@@ -101,7 +101,8 @@ StereoEvalResult runStereoEval(const StereoEvalOptions& o) {
     cv::Mat truth_raw = cv::imread(o.truth, cv::IMREAD_UNCHANGED);
     if (truth_raw.empty()) throw std::runtime_error(o.truth + ": cannot read the truth image");
     if (truth_raw.size() != ref.size() || truth_raw.channels() != 1)
-      throw std::invalid_argument(o.truth + ": expected a one-channel image the size of the reference");
+      throw std::invalid_argument(o.truth +
+                                  ": expected a one-channel image the size of the reference");
     cv::Mat truth;
     truth_raw.convertTo(truth, CV_32F, 1.0 / o.truth_scale);
     TrinocularRig rig;

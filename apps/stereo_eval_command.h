@@ -13,17 +13,17 @@ namespace coopmap {
 struct StereoEvalOptions {
   // Image triple with ground truth...
   std::string reference, horizontal, vertical, truth;
-  double truth_scale = 1.0;     // truth disparity = pixel value / truth_scale (Tsukuba: 16)
+  double truth_scale = 1.0;        // truth disparity = pixel value / truth_scale (Tsukuba: 16)
   double horizontal_offset = 1.0;  // partner offsets along x / y of the reference camera,
   double vertical_offset = -1.0;   // in units of one baseline (+x right, +y down)
-  std::string rig;              // ... or offsets (metres) from a robot model file
+  std::string rig;                 // ... or offsets (metres) from a robot model file
   // ... or frames rendered along the first robot's route of a world.
   std::string world;
-  int frames = 10;              // how many frames, evenly spread over the route
+  int frames = 10;  // how many frames, evenly spread over the route
   uint64_t seed = 1;
   StereoConfig stereo;
-  int border = 0;               // pixels skipped on every side
-  std::string png_dir;          // pictures of the (first) frame's disparities
+  int border = 0;       // pixels skipped on every side
+  std::string png_dir;  // pictures of the (first) frame's disparities
 };
 
 struct StereoEvalResult {

@@ -18,5 +18,4 @@ struct BenchScene {
 // Built once per process and image size (90 degree horizontal field of view).
 BenchScene& labScene(int width = 160, int height = 120);
 
-
 }  // namespace coopmap::bench

@@ -18,12 +18,16 @@ struct Size {
 };
 Size sizeOf(const benchmark::State& state) {
   const int w = static_cast<int>(state.range(0));
-  return w == 160 ? Size{160, 120, 32, 7} : w == 320 ? Size{320, 240, 48, 9} : Size{640, 480, 64, 11};
+  return w == 160   ? Size{160, 120, 32, 7}
+         : w == 320 ? Size{320, 240, 48, 9}
+                    : Size{640, 480, 64, 11};
 }
 
 void report(benchmark::State& state, BenchScene& s, const cv::Mat& disparity, int border) {
-  const double fb = s.model.description.rig.intrinsics.fx * s.model.description.rig.referenceBaseline();
-  const DisparityScore sc = scoreDisparity(disparity, disparityFromDepth(s.truth_depth, fb), 1.0, border);
+  const double fb =
+      s.model.description.rig.intrinsics.fx * s.model.description.rig.referenceBaseline();
+  const DisparityScore sc =
+      scoreDisparity(disparity, disparityFromDepth(s.truth_depth, fb), 1.0, border);
   state.counters["bad_pixel_rate"] = sc.bad_pixel_rate;
   state.counters["density"] = sc.density;
 }

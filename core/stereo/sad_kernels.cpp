@@ -53,9 +53,8 @@ COOPMAP_INLINE void differencePixel(int r, const uint8_t* __restrict a, int na,
 }
 
 template <int ND>
-COOPMAP_INLINE void differenceRowT(const uint8_t* ref, int width, int nd_runtime,
-                                   const PairRow& pa, const PairRow& pb, uint8_t* out_a,
-                                   uint8_t* out_b) {
+COOPMAP_INLINE void differenceRowT(const uint8_t* ref, int width, int nd_runtime, const PairRow& pa,
+                                   const PairRow& pb, uint8_t* out_a, uint8_t* out_b) {
   const int nd = ND > 0 ? ND : nd_runtime;
   for (int x = 0; x < width; ++x) {
     const size_t o = static_cast<size_t>(x) * nd;
@@ -113,8 +112,8 @@ COOPMAP_INLINE Choice choose(const uint16_t* __restrict c, int nd_runtime) {
 
 template <int ND>
 COOPMAP_INLINE void chooseRowT(const uint16_t* colsum_a, const uint16_t* colsum_b, int width,
-                               int nd_runtime, int window, const uint8_t* skip,
-                               uint32_t uniqueness, uint16_t* scratch, Choice* choices) {
+                               int nd_runtime, int window, const uint8_t* skip, uint32_t uniqueness,
+                               uint16_t* scratch, Choice* choices) {
   const int nd = ND > 0 ? ND : nd_runtime;
   const int r = window / 2;
   uint16_t* ca = scratch;
@@ -151,25 +150,35 @@ COOPMAP_INLINE void chooseRowT(const uint16_t* colsum_a, const uint16_t* colsum_
 // The common disparity counts get unrolled instances; others the general loop.
 #define COOPMAP_DISPATCH_ND(nd, call) \
   switch (nd) {                       \
-    case 16: call(16); break;         \
-    case 32: call(32); break;         \
-    case 48: call(48); break;         \
-    case 64: call(64); break;         \
-    default: call(0); break;          \
+    case 16:                          \
+      call(16);                       \
+      break;                          \
+    case 32:                          \
+      call(32);                       \
+      break;                          \
+    case 48:                          \
+      call(48);                       \
+      break;                          \
+    case 64:                          \
+      call(64);                       \
+      break;                          \
+    default:                          \
+      call(0);                        \
+      break;                          \
   }
 
 COOPMAP_SIMD_CLONES
 void differenceRowPortable(const uint8_t* ref, int width, int nd, const PairRow& a,
-                           const PairRow& b, uint8_t* out_a, uint8_t* out_b) {
+                           const PairRow& b, uint8_t* out_a, uint8_t* out_b){
 #define COOPMAP_CALL(N) differenceRowT<N>(ref, width, nd, a, b, out_a, out_b)
-  COOPMAP_DISPATCH_ND(nd, COOPMAP_CALL)
+    COOPMAP_DISPATCH_ND(nd, COOPMAP_CALL)
 #undef COOPMAP_CALL
 }
 
 COOPMAP_SIMD_CLONES
-void chooseRowPortable(const uint16_t* colsum_a, const uint16_t* colsum_b, int width, int nd,
-                       int window, const uint8_t* skip, uint32_t uniqueness, uint16_t* scratch,
-                       Choice* choices) {
+    void chooseRowPortable(const uint16_t* colsum_a, const uint16_t* colsum_b, int width, int nd,
+                           int window, const uint8_t* skip, uint32_t uniqueness, uint16_t* scratch,
+                           Choice* choices) {
 #define COOPMAP_CALL(N) \
   chooseRowT<N>(colsum_a, colsum_b, width, nd, window, skip, uniqueness, scratch, choices)
   COOPMAP_DISPATCH_ND(nd, COOPMAP_CALL)
@@ -216,14 +225,17 @@ __attribute__((target("avx2"))) void differenceRowAvx2(const uint8_t* ref, int w
       continue;
     }
     // Near the borders: the same rule as differencePixel, lane by lane with blends.
-    const __m256i iota = _mm256_setr_epi8(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16,
-                                          17, 18, 19, 20, 21, 22, 23, 24, 25, 26, 27, 28, 29, 30, 31);
+    const __m256i iota =
+        _mm256_setr_epi8(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 20,
+                         21, 22, 23, 24, 25, 26, 27, 28, 29, 30, 31);
     const __m256i unseen = _mm256_set1_epi8(static_cast<char>(kUnseen));
     int d = 0;
     for (; d + 32 <= ND; d += 32) {
       const __m256i idx = _mm256_add_epi8(iota, _mm256_set1_epi8(static_cast<char>(d)));
-      const __m256i wa = _mm256_cmpgt_epi8(_mm256_set1_epi8(static_cast<char>(std::min(na, ND))), idx);
-      const __m256i wb = _mm256_cmpgt_epi8(_mm256_set1_epi8(static_cast<char>(std::min(nb, ND))), idx);
+      const __m256i wa =
+          _mm256_cmpgt_epi8(_mm256_set1_epi8(static_cast<char>(std::min(na, ND))), idx);
+      const __m256i wb =
+          _mm256_cmpgt_epi8(_mm256_set1_epi8(static_cast<char>(std::min(nb, ND))), idx);
       const __m256i va = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(a + d));
       const __m256i vb = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(b + d));
       const __m256i da = _mm256_sub_epi8(_mm256_max_epu8(r, va), _mm256_min_epu8(r, va));
@@ -235,15 +247,18 @@ __attribute__((target("avx2"))) void differenceRowAvx2(const uint8_t* ref, int w
     }
     if (d < ND) {  // a last 16
       const __m128i r16 = _mm256_castsi256_si128(r), u16 = _mm256_castsi256_si128(unseen);
-      const __m128i idx = _mm_add_epi8(_mm256_castsi256_si128(iota), _mm_set1_epi8(static_cast<char>(d)));
+      const __m128i idx =
+          _mm_add_epi8(_mm256_castsi256_si128(iota), _mm_set1_epi8(static_cast<char>(d)));
       const __m128i wa = _mm_cmpgt_epi8(_mm_set1_epi8(static_cast<char>(std::min(na, ND))), idx);
       const __m128i wb = _mm_cmpgt_epi8(_mm_set1_epi8(static_cast<char>(std::min(nb, ND))), idx);
       const __m128i va = _mm_loadu_si128(reinterpret_cast<const __m128i*>(a + d));
       const __m128i vb = _mm_loadu_si128(reinterpret_cast<const __m128i*>(b + d));
       const __m128i da = _mm_sub_epi8(_mm_max_epu8(r16, va), _mm_min_epu8(r16, va));
       const __m128i db = _mm_sub_epi8(_mm_max_epu8(r16, vb), _mm_min_epu8(r16, vb));
-      _mm_storeu_si128(reinterpret_cast<__m128i*>(oa + d), _mm_blendv_epi8(_mm_blendv_epi8(u16, db, wb), da, wa));
-      _mm_storeu_si128(reinterpret_cast<__m128i*>(ob + d), _mm_blendv_epi8(_mm_blendv_epi8(u16, da, wa), db, wb));
+      _mm_storeu_si128(reinterpret_cast<__m128i*>(oa + d),
+                       _mm_blendv_epi8(_mm_blendv_epi8(u16, db, wb), da, wa));
+      _mm_storeu_si128(reinterpret_cast<__m128i*>(ob + d),
+                       _mm_blendv_epi8(_mm_blendv_epi8(u16, da, wa), db, wb));
     }
   }
 }
@@ -308,10 +323,9 @@ __attribute__((target("avx2"))) inline __m256i load(const uint16_t* p) {
 // chooseRowT in AVX2 with the sliding sums held in registers (ND / 16 vectors per pair).
 template <int ND>
 __attribute__((target("avx2"))) void chooseRowAvx2(const uint16_t* colsum_a,
-                                                   const uint16_t* colsum_b, int width,
-                                                   int window, const uint8_t* skip,
-                                                   uint32_t uniqueness, uint16_t*,
-                                                   Choice* choices) {
+                                                   const uint16_t* colsum_b, int width, int window,
+                                                   const uint8_t* skip, uint32_t uniqueness,
+                                                   uint16_t*, Choice* choices) {
   constexpr int kV = ND / 16;
   const int r = window / 2;
   __m256i ca[kV], cb[kV];
@@ -386,11 +400,20 @@ void chooseRow(const uint16_t* colsum_a, const uint16_t* colsum_b, int width, in
 #ifdef COOPMAP_HAVE_AVX2_PATH
   if (haveAvx2()) {
     switch (nd) {
-      case 16: return chooseRowAvx2<16>(colsum_a, colsum_b, width, window, skip, uniqueness, scratch, choices);
-      case 32: return chooseRowAvx2<32>(colsum_a, colsum_b, width, window, skip, uniqueness, scratch, choices);
-      case 48: return chooseRowAvx2<48>(colsum_a, colsum_b, width, window, skip, uniqueness, scratch, choices);
-      case 64: return chooseRowAvx2<64>(colsum_a, colsum_b, width, window, skip, uniqueness, scratch, choices);
-      default: break;
+      case 16:
+        return chooseRowAvx2<16>(colsum_a, colsum_b, width, window, skip, uniqueness, scratch,
+                                 choices);
+      case 32:
+        return chooseRowAvx2<32>(colsum_a, colsum_b, width, window, skip, uniqueness, scratch,
+                                 choices);
+      case 48:
+        return chooseRowAvx2<48>(colsum_a, colsum_b, width, window, skip, uniqueness, scratch,
+                                 choices);
+      case 64:
+        return chooseRowAvx2<64>(colsum_a, colsum_b, width, window, skip, uniqueness, scratch,
+                                 choices);
+      default:
+        break;
     }
   }
 #endif

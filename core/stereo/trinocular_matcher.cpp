@@ -96,8 +96,10 @@ void TrinocularMatcher::preparePair(Pair& pair, const cv::Mat& partner) {
   pair.prepared.create(rows, cols + nd, CV_8UC1);
   cv::Mat body = pair.prepared(cv::Rect(0, 0, cols, rows));  // never writes into `partner`
   if (pair.horizontal) {
-    if (pair.step < 0) cv::flip(partner, body, 1);
-    else partner.copyTo(body);
+    if (pair.step < 0)
+      cv::flip(partner, body, 1);
+    else
+      partner.copyTo(body);
   } else {
     cv::transpose(partner, body);
     if (pair.step < 0) cv::flip(body, body, 1);
@@ -191,14 +193,14 @@ StereoStats TrinocularMatcher::compute(const cv::Mat& reference, const cv::Mat& 
 
   const int nd = config_.num_disparities, w = config_.window, r = w / 2;
   const size_t row_len = static_cast<size_t>(width_) * nd;
-  const uint32_t min_texture_sum =
-      static_cast<uint32_t>(std::ceil(config_.min_texture * w * w));
+  const uint32_t min_texture_sum = static_cast<uint32_t>(std::ceil(config_.min_texture * w * w));
   // Uniqueness in 1/1024ths: reject when second * 1024 <= best * (1024 + u).
   const uint64_t uniq = static_cast<uint64_t>(std::lround(config_.uniqueness * 1024.0));
   for (auto& c : colsum_) std::fill(c.begin(), c.end(), 0);
   const bool both = pairs_[0].enabled && pairs_[1].enabled;
   const bool check_pairs = both && config_.pair_consistency >= 0.0;
-  const uint64_t pair_tol = static_cast<uint64_t>(std::lround(std::max(0.0, config_.pair_consistency) * 1024.0));
+  const uint64_t pair_tol =
+      static_cast<uint64_t>(std::lround(std::max(0.0, config_.pair_consistency) * 1024.0));
   StereoStats stats;
   stats.rejected_border = 2 * r * width_ + 2 * r * (height_ - 2 * r);
   Pair& a = pairs_[0];

@@ -13,7 +13,6 @@
 
 namespace coopmap {
 
-
 // Disparity value for pixels that failed validation.
 inline constexpr float kInvalidDisparity = -1.0f;
 
@@ -69,10 +68,10 @@ class TrinocularMatcher {
   // Where a partner's samples for disparities 0, 1, 2, ... of a reference pixel lie.
   struct Pair {
     bool enabled = false;
-    bool horizontal = true;  // the partner is displaced along x (else along y)
-    double step = -1.0;      // partner image shift (px) per unit of disparity, signed
-    bool unit = true;        // |step| == 1: samples are contiguous in a prepared image
-    cv::Mat prepared;        // unit pairs: rows (or transposed columns) laid out along d
+    bool horizontal = true;      // the partner is displaced along x (else along y)
+    double step = -1.0;          // partner image shift (px) per unit of disparity, signed
+    bool unit = true;            // |step| == 1: samples are contiguous in a prepared image
+    cv::Mat prepared;            // unit pairs: rows (or transposed columns) laid out along d
     std::vector<uint8_t> table;  // other ratios: this row's samples [x][d]
     std::vector<int> valid;      // other ratios: this row's leading in-image disparities
   };
@@ -103,13 +102,13 @@ class TrinocularMatcher {
   double focal_baseline_ = 0.0;
   Pair pairs_[2];
   int width_ = 0, height_ = 0;
-  std::vector<uint8_t> ring_[2];     // differences of the last window + 1 rows [row][x][d]
-  std::vector<uint16_t> colsum_[2];  // vertical window sums per pair [x][d]
-  std::vector<uint16_t> scratch_;    // sliding sums of one pixel per pair, and their sum
+  std::vector<uint8_t> ring_[2];      // differences of the last window + 1 rows [row][x][d]
+  std::vector<uint16_t> colsum_[2];   // vertical window sums per pair [x][d]
+  std::vector<uint16_t> scratch_;     // sliding sums of one pixel per pair, and their sum
   std::vector<sad::Choice> choices_;  // per pixel of the output row
   std::vector<uint8_t> skip_;         // per pixel of the output row: too little texture
-  std::vector<uint16_t> texture_;    // window sums of |gradient| [y][x]
-  std::vector<int32_t> tex_col_;   // running column sums for the texture measure
+  std::vector<uint16_t> texture_;     // window sums of |gradient| [y][x]
+  std::vector<int32_t> tex_col_;      // running column sums for the texture measure
 };
 
 }  // namespace coopmap

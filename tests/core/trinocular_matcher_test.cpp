@@ -144,3 +144,83 @@ TEST(TrinocularMatcherTest, ConfigValidationNamesTheField) {
 
 }  // namespace
 }  // namespace coopmap
+
+namespace coopmap {
+namespace {
+
+// Views of a plane at disparity d for a rig whose partners sit at any side and baseline
+// ratio: the horizontal partner sees the texture shifted by -sh * d along x, the vertical
+// one by -sv * d along y (sh = tx / b, sv = ty / b for offsets (tx, 0) and (0, ty)).
+Views shiftedViews(const cv::Mat& tex, int d, int sh, int sv) {
+  const int m = 70;
+  Views v;
+  v.ref = tex(cv::Rect(m, m, 160, 120)).clone();
+  v.hor = tex(cv::Rect(m + sh * d, m, 160, 120)).clone();
+  v.ver = tex(cv::Rect(m, m + sv * d, 160, 120)).clone();
+  return v;
+}
+
+TEST(TrinocularMatcherTest, AnySignAndBaselineRatio) {
+  const cv::Mat tex = texture(300, 260, 5);
+  struct Case {
+    double tx, ty;  // partner offsets in baselines of the horizontal pair
+  } cases[] = {{1, -1}, {-1, -1}, {1, 1}, {-1, 1}, {1, -2}, {1, 2}};
+  for (const Case& c : cases) {
+    TrinocularRig rig = rig160();
+    rig.horizontal_offset = {0.1 * c.tx, 0.0, 0.0};
+    rig.vertical_offset = {0.0, 0.1 * c.ty, 0.0};
+    const int d = 6;
+    // Partner pixel = reference pixel shifted by -(offset / b) * d.
+    const Views v = shiftedViews(tex, d, static_cast<int>(c.tx), static_cast<int>(c.ty));
+    TrinocularMatcher m(rig, StereoConfig{});
+    cv::Mat disp;
+    m.compute(v.ref, v.hor, v.ver, disp);
+    int good = 0, valid = 0;
+    for (int y = 20; y < 100; ++y)
+      for (int x = 20; x < 140; ++x) {
+        const float got = disp.at<float>(y, x);
+        if (got == kInvalidDisparity) continue;
+        ++valid;
+        good += std::abs(got - d) < 0.25;
+      }
+    EXPECT_GT(valid, 0.8 * 80 * 120) << "offsets " << c.tx << ", " << c.ty;
+    EXPECT_GT(good, 0.98 * valid) << "offsets " << c.tx << ", " << c.ty;
+  }
+}
+
+TEST(TrinocularMatcherTest, DiagonalPartnerIsRejectedClearly) {
+  TrinocularRig rig = rig160();
+  rig.vertical_offset = {0.05, -0.1, 0.0};
+  try {
+    TrinocularMatcher m(rig, StereoConfig{});
+    FAIL() << "expected an exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("vertical_offset"), std::string::npos) << e.what();
+  }
+}
+
+TEST(TrinocularMatcherTest, WiderDisparityRangesMatchToo) {
+  const cv::Mat tex = texture(300, 260, 6);
+  for (int nd : {16, 48, 64, 40}) {
+    StereoConfig c;
+    c.num_disparities = nd;
+    TrinocularMatcher m(rig160(), c);
+    const int d = nd / 2 - 1;
+    const Views v = shiftedViews(tex, d, 1, -1);
+    cv::Mat disp;
+    m.compute(v.ref, v.hor, v.ver, disp);
+    int good = 0, valid = 0;
+    for (int y = 10; y < 110; ++y)
+      for (int x = 70; x < 150; ++x) {
+        const float got = disp.at<float>(y, x);
+        if (got == kInvalidDisparity) continue;
+        ++valid;
+        good += std::abs(got - d) < 0.25;
+      }
+    EXPECT_GT(valid, 1000) << nd;
+    EXPECT_GT(good, 0.98 * valid) << nd;
+  }
+}
+
+}  // namespace
+}  // namespace coopmap

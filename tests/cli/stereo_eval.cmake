@@ -1,0 +1,42 @@
+# `coopmap stereo-eval` end to end: Tsukuba with --json and pictures, a rendered world,
+# and a clear error without inputs.
+set(tsukuba "${SOURCE_DIR}/../shared/data/tsukuba_multiview")
+file(REMOVE_RECURSE "${WORK_DIR}")
+execute_process(COMMAND "${COOPMAP}" stereo-eval RESULT_VARIABLE rc ERROR_VARIABLE err)
+if(rc EQUAL 0 OR NOT err MATCHES "expected --tsukuba DIR, --world FILE")
+  message(FATAL_ERROR "stereo-eval without inputs: rc ${rc}, message:\n${err}")
+endif()
+
+execute_process(COMMAND "${COOPMAP}" stereo-eval --world "${SOURCE_DIR}/worlds/lab.yaml" --frames 3
+                        --json
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "stereo-eval --world failed:\n${err}")
+endif()
+string(JSON bad GET "${out}" bad_pixel_rate)
+string(JSON density GET "${out}" density)
+if(bad GREATER 0.02 OR density LESS 0.6)
+  message(FATAL_ERROR "rendered lab frames: bad_pixel_rate ${bad}, density ${density}")
+endif()
+
+if(NOT EXISTS "${tsukuba}/truedisp.row3.col3.pgm")
+  message(STATUS "SKIPPED: ${tsukuba} is absent")
+  return()
+endif()
+execute_process(COMMAND "${COOPMAP}" stereo-eval --tsukuba "${tsukuba}" --json --png "${WORK_DIR}"
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "stereo-eval --tsukuba failed:\n${err}")
+endif()
+string(JSON bad GET "${out}" bad_pixel_rate)
+string(JSON mae GET "${out}" mae)
+string(JSON density GET "${out}" density)
+if(bad GREATER_EQUAL 0.03 OR density LESS 0.58 OR mae GREATER 0.5)
+  message(FATAL_ERROR "Tsukuba: bad_pixel_rate ${bad}, mae ${mae}, density ${density}")
+endif()
+foreach(f reference.png disparity.png truth.png errors.png)
+  if(NOT EXISTS "${WORK_DIR}/${f}")
+    message(FATAL_ERROR "stereo-eval --png did not write ${f}")
+  endif()
+endforeach()
+message(STATUS "Tsukuba: bad_pixel_rate ${bad}, mae ${mae}, density ${density}")
