@@ -26,7 +26,8 @@ std::optional<Tsukuba> load() {
   t.ref = cv::imread(kDir + "/scene1.row3.col3.ppm", cv::IMREAD_GRAYSCALE);
   t.hor = cv::imread(kDir + "/scene1.row3.col4.ppm", cv::IMREAD_GRAYSCALE);
   t.ver = cv::imread(kDir + "/scene1.row2.col3.ppm", cv::IMREAD_GRAYSCALE);
-  cv::imread(kDir + "/truedisp.row3.col3.pgm", cv::IMREAD_UNCHANGED).convertTo(t.truth, CV_32F, 1.0 / 16);
+  cv::imread(kDir + "/truedisp.row3.col3.pgm", cv::IMREAD_UNCHANGED)
+      .convertTo(t.truth, CV_32F, 1.0 / 16);
   return t;
 }
 
