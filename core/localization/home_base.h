@@ -1,0 +1,49 @@
+// Home-base localization (section 3 of the paper): two corners registered in the map frame
+// at the start are found again on return; the rigid transform that takes them back to
+// their registered places corrects the robot's odometry pose. Heading comes from the line
+// joining the corners (one corner's own angle is too inaccurate), position from the corners.
+#pragma once
+
+#include <optional>
+
+#include <Eigen/Core>
+
+#include "core/geometry/pose2.h"
+#include "core/landmarks/corner_detector.h"
+
+namespace coopmap {
+
+struct HomeBase {
+  Corner first, second;  // registered at start, map frame
+};
+
+enum class HomeBaseStatus { kOk, kCornerNotFound, kGeometryMismatch };
+
+struct HomeBaseFix {
+  HomeBaseStatus status = HomeBaseStatus::kCornerNotFound;
+  Pose2 correction;          // X_MO: maps poses from the drifted (odometry) frame to the map frame
+  Pose2 pose;                // the corrected robot pose (map frame)
+  double sigma_xy = 0.0;     // m, 1-sigma position uncertainty from the fits
+  double sigma_theta = 0.0;  // rad, 1-sigma heading uncertainty
+  double rms = 0.0;          // cells, worse of the two corner fits
+  double separation_error = 0.0;  // m, |observed - registered| corner separation
+  Corner first, second;           // as observed (odometry frame)
+};
+
+// Registers the home base: the two corners found near the predicted positions (m).
+// Returns nullopt with the detector's status when a corner is not found.
+struct HomeBaseRegistration {
+  std::optional<HomeBase> home;
+  CornerStatus status = CornerStatus::kOk;
+};
+HomeBaseRegistration registerHomeBase(const CornerDetector& detector, const Eigen::Vector2d& first,
+                                      const Eigen::Vector2d& second, double search_radius);
+
+// Localizes against the home base: `detector` works on a map built in the odometry frame on
+// return; `odometry` is the robot's odometry pose. Corners are searched near their
+// registered positions (where uncorrected odometry predicts them).
+HomeBaseFix localizeAtHomeBase(const CornerDetector& detector, const HomeBase& home,
+                               const Pose2& odometry, double search_radius,
+                               double max_separation_error = 0.1);
+
+}  // namespace coopmap
