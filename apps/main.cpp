@@ -7,6 +7,7 @@
 #include <CLI/Config.hpp>
 #include <CLI/Formatter.hpp>
 
+#include "apps/corners_command.h"
 #include "apps/run_world.h"
 #include "apps/stereo_eval_command.h"
 #include "core/io/json_writer.h"
@@ -112,9 +113,31 @@ int main(int argc, char** argv) {
                        "Folder for pictures: reference, disparity and truth in colour, errors");
   cmd_eval->add_flag("--json", json, "Print bad_pixel_rate, mae, density as JSON");
 
+  coopmap::CornersOptions corners;
+  auto* cmd_corners = app.add_subcommand(
+      "corners",
+      "Find corner landmarks in a ROS map_server map (MAP.yaml + image): writes corners.png "
+      "(edges blue, fitted corners red) and corners.json (position in metres, heading, RMS "
+      "in cells, iterations) to --out.");
+  cmd_corners->add_option("map", corners.map_yaml, "Map YAML (map_server format)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd_corners->add_option("--out", corners.out_dir, "Output folder")->required();
+  cmd_corners->add_option("--arm-length", corners.arm_length, "Arm length of the corner model (m)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+
   CLI11_PARSE(app, argc, argv);
 
   try {
+    if (cmd_corners->parsed()) {
+      const coopmap::CornersResult r = coopmap::runCorners(corners);
+      std::printf(
+          "%zu corners (%d candidates, %d rejected by RMS, %d not converged, %d edge "
+          "cells); %s/corners.png and corners.json written\n",
+          r.search.corners.size(), r.search.candidates, r.search.rejected_rms,
+          r.search.not_converged, r.edge_cells, corners.out_dir.c_str());
+    }
     if (cmd_eval->parsed()) {
       if (!tsukuba.empty()) {
         eval.reference = tsukuba + "/scene1.row3.col3.ppm";

@@ -252,6 +252,18 @@ Corner CornerDetector::fit(const Eigen::Vector2d& position, double heading) cons
     if (it + 1 == config_.max_iterations) c.converged = moved < config_.settled_step;
   }
   c.rms = evaluate(x, nullptr, nullptr);
+  // Support: the share of each arm's points lying on an edge (within one cell).
+  c.support = 1.0;
+  for (int arm = -1; arm <= 1; arm += 2) {
+    const double a = (x.z() + arm * 45.0) * kDeg;
+    const Eigen::Vector2d dir(std::cos(a), std::sin(a));
+    int on = 0;
+    for (int k = 1; k <= per_arm; ++k) {
+      const Eigen::Vector2d m = x.head<2>() + k * config_.point_spacing * dir;
+      on += std::abs(distance(m.x(), m.y())) <= 1.0;
+    }
+    c.support = std::min(c.support, static_cast<double>(on) / std::max(1, per_arm));
+  }
   c.position = limits_.origin + x.head<2>() * res;
   c.heading = std::remainder(x.z() * kDeg, 2 * M_PI);
   return c;
@@ -295,7 +307,7 @@ CornerSearch CornerDetector::search(const std::vector<Guess>& guesses) const {
       ++s.not_converged;
       continue;
     }
-    if (c.rms > config_.max_rms) {
+    if (c.rms > config_.max_rms || c.support < config_.min_support) {
       ++s.rejected_rms;
       continue;
     }
@@ -303,8 +315,11 @@ CornerSearch CornerDetector::search(const std::vector<Guess>& guesses) const {
     for (Corner& o : s.corners) {
       const double dd = (o.position - c.position).norm() / res;
       const double da = std::abs(std::remainder(o.heading - c.heading, 2 * M_PI)) / kDeg;
-      if (dd < config_.merge_cells && da < config_.merge_degrees) {
-        if (c.rms < o.rms) o = c;
+      // One corner per place: fits that land together are the same corner (or an
+      // ambiguous spot); the clearly better supported, else the lower-RMS, fit stands.
+      if (dd < config_.merge_cells ||
+          (dd < 2 * config_.merge_cells && da < config_.merge_degrees)) {
+        if (c.support > o.support + 0.1 || (c.support > o.support - 0.1 && c.rms < o.rms)) o = c;
         merged = true;
         break;
       }

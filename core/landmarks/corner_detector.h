@@ -39,6 +39,7 @@ struct CornerConfig {
   double min_step = 0.02;        // converged when the step is below this (cells and degrees)
   double settled_step = 0.25;    // after max_iterations: not converged if still moving this much
   double max_rms = 1.5;          // cells: fits above this are rejected (the paper's gate)
+  double min_support = 0.8;      // and fits with less of either arm on an edge (within a cell)
   int upsample = 4;              // distance field resolution: cells / upsample
   double smoothing_cells = 0.0;  // Gaussian smoothing of the signed distance field (sigma, cells)
   double merge_cells = 1.5;      // fits closer than this (and within merge_degrees) are one
@@ -53,6 +54,7 @@ struct Corner {
   Eigen::Vector2d position{0.0, 0.0};  // m, map frame
   double heading = 0.0;                // rad, map frame
   double rms = 0.0;                    // cells
+  double support = 0.0;                // share of the weaker arm's points on an edge
   int iterations = 0;
   bool converged = false;
 };
@@ -64,7 +66,7 @@ struct CornerSearch {
   CornerStatus status = CornerStatus::kNoCandidates;
   std::vector<Corner> corners;  // accepted fits (RMS gate passed), best RMS first
   int candidates = 0;           // corner candidates tried
-  int rejected_rms = 0;
+  int rejected_rms = 0;         // RMS above the gate or too little support
   int not_converged = 0;
 };
 
