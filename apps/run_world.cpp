@@ -169,6 +169,7 @@ RunResult runWorld(const RunOptions& opt) {
     const Pose2 truth = sim.truePose(i), odo = r.driver->odometry();
     r.result.collisions = r.driver->status().contact_events;
     r.result.route_complete = r.follower->done();
+    r.result.traverse = r.mapper->traverse();
     r.result.odometry_error_m = std::hypot(truth.x - odo.x, truth.y - odo.y);
     r.result.odometry_error_deg = std::abs(wrapAngle(truth.theta - odo.theta)) * 180.0 / M_PI;
     r.truth = sim::trueOccupancy(world, limits, sim.description(i).swept_height);

@@ -11,6 +11,7 @@
 
 #include "core/io/tum.h"
 #include "core/mapping/map_metrics.h"
+#include "core/perception/radial_map.h"
 #include "core/robot/robot_interface.h"
 
 namespace coopmap {
@@ -40,6 +41,7 @@ struct RobotRunResult {
   double odometry_error_deg = 0.0;
   MapMetrics map;
   std::vector<StampedPose2> groundtruth, odometry;
+  std::vector<RadialMap> traverse;  // every radial map with the odometry pose it was taken at
 };
 
 struct RunResult {

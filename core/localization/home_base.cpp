@@ -5,6 +5,13 @@
 
 namespace coopmap {
 
+OccupancyGrid localMap(const std::vector<RadialMap>& scans, const MapLimits& limits,
+                       const OccupancyConfig& config) {
+  OccupancyGrid grid(limits, config);
+  for (const RadialMap& scan : scans) grid.insert(scan, scan.odometry);
+  return grid;
+}
+
 HomeBaseRegistration registerHomeBase(const CornerDetector& detector, const Eigen::Vector2d& first,
                                       const Eigen::Vector2d& second, double search_radius) {
   HomeBaseRegistration r;

@@ -5,11 +5,14 @@
 #pragma once
 
 #include <optional>
+#include <vector>
 
 #include <Eigen/Core>
 
 #include "core/geometry/pose2.h"
 #include "core/landmarks/corner_detector.h"
+#include "core/mapping/occupancy_grid.h"
+#include "core/perception/radial_map.h"
 
 namespace coopmap {
 
@@ -29,6 +32,11 @@ struct HomeBaseFix {
   double separation_error = 0.0;  // m, |observed - registered| corner separation
   Corner first, second;           // as observed (odometry frame)
 };
+
+// An occupancy grid of just these radial maps, each inserted at its own odometry pose:
+// the local map a robot makes while it turns in place at the home base.
+OccupancyGrid localMap(const std::vector<RadialMap>& scans, const MapLimits& limits,
+                       const OccupancyConfig& config = {});
 
 // Registers the home base: the two corners found near the predicted positions (m).
 // Returns nullopt with the detector's status when a corner is not found.
