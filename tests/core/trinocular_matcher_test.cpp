@@ -43,6 +43,22 @@ Views planeViews(const cv::Mat& tex, int d) {
   return v;
 }
 
+// Valid pixels in a rectangle, and how many of them lie within 0.25 px of d.
+struct Agreement {
+  int valid = 0, good = 0;
+};
+Agreement agreement(const cv::Mat& disp, const cv::Rect& r, double d) {
+  Agreement a;
+  for (int y = r.y; y < r.y + r.height; ++y)
+    for (int x = r.x; x < r.x + r.width; ++x) {
+      const float got = disp.at<float>(y, x);
+      if (got == kInvalidDisparity) continue;
+      ++a.valid;
+      a.good += std::abs(got - d) < 0.25;
+    }
+  return a;
+}
+
 TEST(TrinocularMatcherTest, RecoversIntegerDisparityOfTexturedPlane) {
   const cv::Mat tex = texture(240, 200, 1);
   TrinocularMatcher m(rig160(), StereoConfig{});
@@ -50,14 +66,7 @@ TEST(TrinocularMatcherTest, RecoversIntegerDisparityOfTexturedPlane) {
     const Views v = planeViews(tex, d);
     cv::Mat disp;
     const StereoStats st = m.compute(v.ref, v.hor, v.ver, disp);
-    int good = 0, valid = 0;
-    for (int y = 0; y < 120; ++y)
-      for (int x = 0; x < 160; ++x) {
-        const float got = disp.at<float>(y, x);
-        if (got == kInvalidDisparity) continue;
-        ++valid;
-        good += std::abs(got - d) < 0.25;
-      }
+    const auto [valid, good] = agreement(disp, cv::Rect(0, 0, 160, 120), d);
     EXPECT_EQ(valid, st.valid);
     EXPECT_GT(valid, 0.85 * 160 * 120) << "d=" << d;
     EXPECT_GT(good, 0.99 * valid) << "d=" << d;
@@ -175,14 +184,7 @@ TEST(TrinocularMatcherTest, AnySignAndBaselineRatio) {
     TrinocularMatcher m(rig, StereoConfig{});
     cv::Mat disp;
     m.compute(v.ref, v.hor, v.ver, disp);
-    int good = 0, valid = 0;
-    for (int y = 20; y < 100; ++y)
-      for (int x = 20; x < 140; ++x) {
-        const float got = disp.at<float>(y, x);
-        if (got == kInvalidDisparity) continue;
-        ++valid;
-        good += std::abs(got - d) < 0.25;
-      }
+    const auto [valid, good] = agreement(disp, cv::Rect(20, 20, 120, 80), d);
     EXPECT_GT(valid, 0.8 * 80 * 120) << "offsets " << c.tx << ", " << c.ty;
     EXPECT_GT(good, 0.98 * valid) << "offsets " << c.tx << ", " << c.ty;
   }
@@ -209,14 +211,7 @@ TEST(TrinocularMatcherTest, WiderDisparityRangesMatchToo) {
     const Views v = shiftedViews(tex, d, 1, -1);
     cv::Mat disp;
     m.compute(v.ref, v.hor, v.ver, disp);
-    int good = 0, valid = 0;
-    for (int y = 10; y < 110; ++y)
-      for (int x = 70; x < 150; ++x) {
-        const float got = disp.at<float>(y, x);
-        if (got == kInvalidDisparity) continue;
-        ++valid;
-        good += std::abs(got - d) < 0.25;
-      }
+    const auto [valid, good] = agreement(disp, cv::Rect(70, 10, 80, 100), d);
     EXPECT_GT(valid, 1000) << nd;
     EXPECT_GT(good, 0.98 * valid) << nd;
   }
