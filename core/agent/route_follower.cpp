@@ -75,7 +75,7 @@ MotionCommand RouteFollower::update(const Pose2& pose) {
           phase_ = Phase::kTurn;
           continue;
         }
-        return {0.0, config_.angular_speed};
+        return {0.0, wp.spin_rate > 0.0 ? wp.spin_rate : config_.angular_speed};
     }
   }
   return MotionCommand::stop();

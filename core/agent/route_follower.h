@@ -14,6 +14,7 @@ namespace coopmap {
 struct Waypoint {
   Eigen::Vector2d position{0.0, 0.0};  // m, odometry (map) frame
   bool spin = false;                   // turn a full circle on arrival
+  double spin_rate = 0.0;              // rad/s for that turn; 0: the route's turn rate
 };
 
 struct RouteConfig {

@@ -31,15 +31,15 @@ void OdometryModel::integrate(const BodyVelocity& v, const Pose2& true_pose, dou
     pose_ = true_pose;
     return;
   }
-  const double sq = std::sqrt(dt);
-  const double ds_true = v.forward * dt;
+  // Random errors grow with the distance driven and the angle turned, not with time.
+  const double ds_true = v.forward * dt, dtheta_true = v.yaw_rate * dt;
   double ds = ds_true * (1.0 + config_.scale_error);
   if (config_.linear_noise > 0.0)
-    ds += config_.linear_noise * std::abs(v.forward) * sq * normal_(rng_);
-  double dtheta = v.yaw_rate * dt * (1.0 + config_.turn_scale_error) +
-                  config_.heading_drift * std::abs(ds_true);
-  if (config_.angular_noise > 0.0 && std::abs(v.yaw_rate) > 1e-3)
-    dtheta += config_.angular_noise * sq * normal_(rng_);
+    ds += config_.linear_noise * std::sqrt(std::abs(ds_true)) * normal_(rng_);
+  double dtheta =
+      dtheta_true * (1.0 + config_.turn_scale_error) + config_.heading_drift * std::abs(ds_true);
+  if (config_.angular_noise > 0.0)
+    dtheta += config_.angular_noise * std::sqrt(std::abs(dtheta_true)) * normal_(rng_);
   // Midpoint integration of the unicycle model.
   const double mid = pose_.theta + 0.5 * dtheta;
   pose_.x += ds * std::cos(mid);
