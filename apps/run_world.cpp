@@ -107,7 +107,9 @@ RunResult runWorld(const RunOptions& opt) {
                                     *opt.odometry + "'");
       model.odometry.perfect = *opt.odometry == "perfect";
     }
-    const int index = sim.addRobot(spec, {model.description, model.drive, model.odometry});
+    if (!opt.camera_noise) model.cameras = sim::CameraNoiseConfig{};
+    const int index =
+        sim.addRobot(spec, {model.description, model.drive, model.odometry, model.cameras});
     RobotRun r;
     r.driver = std::make_unique<SimRobot>(sim, index);
     r.mapper = std::make_unique<Mapper>(model.description, limits, MapperConfig{});

@@ -23,6 +23,7 @@ struct RunOptions {
   double duration = 600.0;              // s of simulated time at most
   std::optional<int> robots;            // use only the first N robots of the world
   std::optional<std::string> odometry;  // "perfect" or "drifting" overrides the model file
+  bool camera_noise = true;             // false: noise-free cameras whatever the model says
   bool progress = false;                // progress bar on stderr
   // Called with every sensing frame and its ground-truth depth (reference camera, metres),
   // for evaluation tools; rendering the depth costs a little, so only when set.

@@ -18,7 +18,8 @@ BenchScene& labScene(int width, int height) {
     s.model = loadRobotModel(world.robots[0].model_file);
     s.model.description.rig.intrinsics = CameraIntrinsics::fromFov(width, height, M_PI / 2);
     s.sim = std::make_unique<sim::Simulator>(world, 1);
-    s.sim->addRobot(world.robots[0], {s.model.description, s.model.drive, s.model.odometry});
+    s.sim->addRobot(world.robots[0],
+                    {s.model.description, s.model.drive, s.model.odometry, s.model.cameras});
     s.frame = s.sim->capture(0, &s.truth_depth);
   }
   return *slot;

@@ -50,7 +50,15 @@ RobotModel parseRobotModel(const std::string& text, const std::string& file) {
     cam["vertical_offset"].fail("[0, b, 0] with |b| > 5 mm (a rectified vertical partner)");
 
   if (const auto sim = root.get("simulation")) {
-    sim->allowOnly({"mass", "traction_mu", "odometry"});
+    sim->allowOnly({"mass", "traction_mu", "odometry", "camera_noise"});
+    if (const auto cn = sim->get("camera_noise")) {
+      cn->allowOnly({"pixel_sigma", "gain_spread", "offset_spread", "blur_sigma"});
+      sim::CameraNoiseConfig& c = m.cameras;
+      c.pixel_sigma = optionalDouble(*cn, "pixel_sigma", 0.0, 0.0, 50.0, "[0, 50] grey levels");
+      c.gain_spread = optionalDouble(*cn, "gain_spread", 0.0, 0.0, 0.5, "a fraction in [0, 0.5]");
+      c.offset_spread = optionalDouble(*cn, "offset_spread", 0.0, 0.0, 50.0, "[0, 50] grey levels");
+      c.blur_sigma = optionalDouble(*cn, "blur_sigma", 0.0, 0.0, 5.0, "[0, 5] px");
+    }
     m.drive.mass =
         optionalDouble(*sim, "mass", m.drive.mass, 1.0, 1000.0, "a mass in [1, 1000] kg");
     m.drive.traction_mu = optionalDouble(*sim, "traction_mu", m.drive.traction_mu, 0.01, 3.0,

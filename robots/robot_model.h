@@ -13,6 +13,7 @@ struct RobotModel {
   RobotDescription description;
   sim::DriveConfig drive;
   sim::OdometryConfig odometry;
+  sim::CameraNoiseConfig cameras;
 };
 
 // Loads a robot model file; ConfigError messages name the file, line and field.

@@ -26,6 +26,7 @@ int Simulator::addRobot(const RobotSpec& spec, const SimRobotConfig& config) {
   s.physics_index = physics_->addRobot(config.description, spec.start, config.drive);
   const uint64_t robot_seed = seed_ * 0x9E3779B97F4A7C15ull + robots_.size() + 1;
   s.odometry = std::make_unique<OdometryModel>(config.odometry, spec.start, robot_seed);
+  for (uint64_t c = 0; c < 3; ++c) s.cameras.emplace_back(config.cameras, robot_seed * 31 + c + 7);
   robots_.push_back(std::move(s));
   return static_cast<int>(robots_.size()) - 1;
 }
@@ -78,6 +79,10 @@ TrinocularFrame Simulator::capture(int robot, cv::Mat* truth_depth) {
   renderer_->render(cameraPose(robot, 0), others, f.reference, truth_depth);
   renderer_->render(cameraPose(robot, 1), others, f.horizontal);
   renderer_->render(cameraPose(robot, 2), others, f.vertical);
+  std::vector<CameraModel>& cams = robots_.at(robot).cameras;
+  cams[0].apply(f.reference);
+  cams[1].apply(f.horizontal);
+  cams[2].apply(f.vertical);
   return f;
 }
 

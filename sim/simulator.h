@@ -13,6 +13,7 @@
 #include "core/robot/robot_interface.h"
 #include "sim/physics/physics_world.h"
 #include "sim/render/renderer.h"
+#include "sim/sensors/camera_model.h"
 #include "sim/sensors/odometry.h"
 #include "sim/world/world.h"
 
@@ -22,6 +23,7 @@ struct SimRobotConfig {
   RobotDescription description;
   DriveConfig drive;
   OdometryConfig odometry;
+  CameraNoiseConfig cameras;  // the same imperfections model for all three cameras
 };
 
 class Simulator {
@@ -61,6 +63,7 @@ class Simulator {
     SimRobotConfig config;
     int physics_index = 0;
     std::unique_ptr<OdometryModel> odometry;
+    std::vector<CameraModel> cameras;  // reference, horizontal, vertical
   };
   World world_;
   uint64_t seed_;

@@ -46,7 +46,7 @@ struct Scene {
   RobotModel model;
   explicit Scene(const sim::World& w) : sim(w, 1), model(loadRobotModel(w.robots[0].model_file)) {
     model.odometry.perfect = true;
-    sim.addRobot(w.robots[0], {model.description, model.drive, model.odometry});
+    sim.addRobot(w.robots[0], {model.description, model.drive, model.odometry, model.cameras});
   }
 };
 
