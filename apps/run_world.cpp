@@ -54,6 +54,10 @@ void writeOutputs(const RunOptions& opt, const sim::World& world, const RunResul
   j.value("seed", static_cast<long long>(opt.seed));
   j.value("sim_time_s", result.sim_time_s).value("wall_time_s", result.wall_time_s);
   j.value("real_time_factor", result.real_time_factor);
+  j.beginObject("timing_s");
+  j.value("physics", result.timing.physics_s).value("render", result.timing.render_s);
+  j.value("stereo", result.timing.stereo_s).value("mapping", result.timing.mapping_s);
+  j.endObject();
   j.beginObject("robots");
   for (const RobotRunResult& r : result.robots) {
     j.beginObject(r.name);
@@ -120,7 +124,14 @@ RunResult runWorld(const RunOptions& opt) {
   }
 
   const double control_dt = 1.0 / world.control_rate;
-  const double sense_dt = 1.0 / world.sensing_rate;
+  if (opt.sensing_rate && !(*opt.sensing_rate > 0.0 && *opt.sensing_rate <= 60.0))
+    throw std::invalid_argument("--sensing-rate: expected a rate in (0, 60] Hz");
+  const double sense_dt = 1.0 / opt.sensing_rate.value_or(world.sensing_rate);
+  using Clock = std::chrono::steady_clock;
+  auto seconds = [](Clock::time_point a, Clock::time_point b) {
+    return std::chrono::duration<double>(b - a).count();
+  };
+  RunTiming timing;
   double next_sense = 0.0, next_progress = 0.0;
   const bool progress = opt.progress && ::isatty(2);
   while (true) {
@@ -133,12 +144,14 @@ RunResult runWorld(const RunOptions& opt) {
       if (sense) {
         std::optional<TrinocularFrame> frame;
         cv::Mat depth;
+        const auto render_start = Clock::now();
         if (opt.frame_observer) {
           frame = sim.capture(i, &depth);
           opt.frame_observer(r.result.name, *frame, depth);
         } else {
           frame = r.driver->captureFrame();
         }
+        timing.render_s += seconds(render_start, Clock::now());
         if (frame) {
           r.mapper->process(*frame);
           ++r.result.frames;
@@ -154,7 +167,9 @@ RunResult runWorld(const RunOptions& opt) {
       next_progress += 1.0;
     }
     if (t >= opt.duration || (all_done && sense)) break;
+    const auto physics_start = Clock::now();
     sim.advance(control_dt);
+    timing.physics_s += seconds(physics_start, Clock::now());
     for (RobotRun& r : runs) {
       const Pose2 p = sim.truePose(r.driver->index());
       r.result.path_length_m += std::hypot(p.x - r.last_true.x, p.y - r.last_true.y);
@@ -165,6 +180,11 @@ RunResult runWorld(const RunOptions& opt) {
 
   RunResult result;
   result.sim_time_s = sim.time();
+  result.timing = timing;
+  for (const RobotRun& r : runs) {
+    result.timing.stereo_s += r.mapper->timing().stereo_s;
+    result.timing.mapping_s += r.mapper->timing().mapping_s;
+  }
   const GridU8 floor = sim::floorMask(world, limits);
   for (RobotRun& r : runs) {
     const int i = r.driver->index();

@@ -24,6 +24,7 @@ struct RunOptions {
   std::optional<int> robots;            // use only the first N robots of the world
   std::optional<std::string> odometry;  // "perfect" or "drifting" overrides the model file
   bool camera_noise = true;             // false: noise-free cameras whatever the model says
+  std::optional<double> sensing_rate;   // Hz; overrides the world's
   bool progress = false;                // progress bar on stderr
   // Called with every sensing frame and its ground-truth depth (reference camera, metres),
   // for evaluation tools; rendering the depth costs a little, so only when set.
@@ -45,8 +46,14 @@ struct RobotRunResult {
   std::vector<RadialMap> traverse;  // every radial map with the odometry pose it was taken at
 };
 
+// Wall time per stage of a run, all robots together (s).
+struct RunTiming {
+  double physics_s = 0.0, render_s = 0.0, stereo_s = 0.0, mapping_s = 0.0;
+};
+
 struct RunResult {
   std::vector<RobotRunResult> robots;
+  RunTiming timing;
   double sim_time_s = 0.0;
   double wall_time_s = 0.0;
   double real_time_factor = 0.0;

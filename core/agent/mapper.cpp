@@ -1,5 +1,7 @@
 #include "core/agent/mapper.h"
 
+#include <chrono>
+
 namespace coopmap {
 
 Mapper::Mapper(const RobotDescription& robot, const MapLimits& limits, const MapperConfig& config)
@@ -11,10 +13,17 @@ Mapper::Mapper(const RobotDescription& robot, const MapLimits& limits, const Map
 }
 
 const RadialMap& Mapper::process(const TrinocularFrame& frame) {
+  using Clock = std::chrono::steady_clock;
+  const auto t0 = Clock::now();
   stats_ = matcher_.compute(frame.reference, frame.horizontal, frame.vertical, disparity_);
+  const auto t1 = Clock::now();
   traverse_.push_back(
       buildRadialMap(disparity_, robot_, config_.radial, frame.stamp, frame.odometry));
   grid_.insert(traverse_.back(), frame.odometry);
+  const auto t2 = Clock::now();
+  timing_.stereo_s += std::chrono::duration<double>(t1 - t0).count();
+  timing_.mapping_s += std::chrono::duration<double>(t2 - t1).count();
+  ++timing_.frames;
   return traverse_.back();
 }
 

@@ -19,6 +19,13 @@ struct MapperConfig {
   OccupancyConfig occupancy;
 };
 
+// Wall time spent per stage since construction (for real-time-factor reports).
+struct MapperTiming {
+  double stereo_s = 0.0;   // trinocular matching
+  double mapping_s = 0.0;  // radial map and grid update
+  int frames = 0;
+};
+
 class Mapper {
  public:
   Mapper(const RobotDescription& robot, const MapLimits& limits, const MapperConfig& config);
@@ -31,6 +38,7 @@ class Mapper {
   const cv::Mat& lastDisparity() const { return disparity_; }
   const std::vector<RadialMap>& traverse() const { return traverse_; }
   const StereoStats& lastStereoStats() const { return stats_; }
+  const MapperTiming& timing() const { return timing_; }
 
  private:
   RobotDescription robot_;
@@ -40,6 +48,7 @@ class Mapper {
   cv::Mat disparity_;
   StereoStats stats_;
   std::vector<RadialMap> traverse_;
+  MapperTiming timing_;
 };
 
 }  // namespace coopmap

@@ -28,6 +28,10 @@ CameraModel::CameraModel(const CameraNoiseConfig& config, uint64_t seed)
   std::normal_distribution<double> n(0.0, 1.0);
   gain_ = 1.0 + config_.gain_spread * n(rng_);
   offset_ = config_.offset_spread * n(rng_);
+  if (config_.pixel_sigma > 0.0) {
+    noise_.resize(1 << 16);  // a power of two: the index wraps with a mask
+    for (float& v : noise_) v = static_cast<float>(config_.pixel_sigma * n(rng_));
+  }
 }
 
 void CameraModel::apply(cv::Mat& image) {
@@ -35,10 +39,14 @@ void CameraModel::apply(cv::Mat& image) {
   image.convertTo(work_, CV_32F, gain_, offset_);
   if (config_.blur_sigma > 0.0) cv::GaussianBlur(work_, work_, cv::Size(0, 0), config_.blur_sigma);
   if (config_.pixel_sigma > 0.0) {
-    std::normal_distribution<float> n(0.0f, static_cast<float>(config_.pixel_sigma));
+    // Gaussian samples drawn once into a table; each frame reads it from a random start
+    // with a random odd stride (cheap, and still seeded).
+    const size_t n = noise_.size();
+    size_t i = rng_() % n;
+    const size_t stride = (rng_() % (n / 2)) * 2 + 1;
     for (int y = 0; y < work_.rows; ++y) {
       float* row = work_.ptr<float>(y);
-      for (int x = 0; x < work_.cols; ++x) row[x] += n(rng_);
+      for (int x = 0; x < work_.cols; ++x, i = (i + stride) & (n - 1)) row[x] += noise_[i];
     }
   }
   work_.convertTo(image, CV_8U);  // rounds and saturates

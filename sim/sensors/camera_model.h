@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <random>
+#include <vector>
 
 #include <opencv2/core/mat.hpp>
 
@@ -35,6 +36,7 @@ class CameraModel {
   std::mt19937_64 rng_;
   double gain_ = 1.0, offset_ = 0.0;
   cv::Mat work_;
+  std::vector<float> noise_;  // Gaussian pixel noise samples
 };
 
 }  // namespace coopmap::sim
