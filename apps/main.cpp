@@ -48,6 +48,9 @@ int main(int argc, char** argv) {
       ->add_option("--sensing-rate", sensing_rate,
                    "Sensing rate (Hz), overriding the world's (the paper: 3)")
       ->check(CLI::Range(0.1, 60.0));
+  cmd_run->add_flag("--steer-by-truth", run.steer_by_truth,
+                    "Follow the route by the true pose, as a person driving it would: the path "
+                    "is the intended one and odometry only records it (drift experiments)");
   bool quiet = false;
   cmd_run->add_flag("--quiet", quiet, "No progress bar");
 

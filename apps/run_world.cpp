@@ -159,7 +159,10 @@ RunResult runWorld(const RunOptions& opt) {
       }
       r.result.groundtruth.push_back({t, sim.truePose(i)});
       r.result.odometry.push_back({t, r.driver->odometry()});
-      r.driver->command(r.follower->update(r.driver->odometry()));
+      // Drift experiments steer by the true pose (as a person driving the route would), so
+      // the path is the intended one and odometry only records it.
+      r.driver->command(
+          r.follower->update(opt.steer_by_truth ? sim.truePose(i) : r.driver->odometry()));
       all_done = all_done && r.follower->done();
     }
     if (progress && t >= next_progress) {

@@ -24,6 +24,7 @@ struct RunOptions {
   std::optional<int> robots;            // use only the first N robots of the world
   std::optional<std::string> odometry;  // "perfect" or "drifting" overrides the model file
   bool camera_noise = true;             // false: noise-free cameras whatever the model says
+  bool steer_by_truth = false;          // follow the route by the true pose (drift experiments)
   std::optional<double> sensing_rate;   // Hz; overrides the world's
   bool progress = false;                // progress bar on stderr
   // Called with every sensing frame and its ground-truth depth (reference camera, metres),

@@ -2,6 +2,9 @@
 // rendered at 10 Hz, physics at its step, the full core pipeline (stereo, radial maps,
 // grid updates). Counters: simulated seconds per wall second and the wall-time split.
 // For a one-core figure run with LP_NUM_THREADS=1 (llvmpipe otherwise uses every core).
+#include <cmath>
+#include <vector>
+
 #include <benchmark/benchmark.h>
 
 #include "apps/run_world.h"
@@ -27,6 +30,53 @@ void BM_RealTimeFactorTwoRobots10Hz(benchmark::State& state) {
 }
 
 BENCHMARK(BM_RealTimeFactorTwoRobots10Hz)->Iterations(1)->Unit(benchmark::kSecond);
+
+}  // namespace
+}  // namespace coopmap::bench
+
+namespace coopmap::bench {
+namespace {
+
+// Odometry drift over the paper's long traverse (worlds/lab_corridor.yaml, ~78 m), the
+// route driven by the true pose, 20 seeds of the B-14's default odometry preset. Paper
+// (Fig. 6): 2.64 m and 25.4 degrees.
+void BM_DriftLoop20Seeds(benchmark::State& state) {
+  std::vector<double> m, deg;
+  double path = 0.0;
+  for (auto _ : state) {
+    m.clear();
+    deg.clear();
+    for (uint64_t seed = 1; seed <= 20; ++seed) {
+      RunOptions o;
+      o.world_file = std::string(COOPMAP_SOURCE_DIR) + "/worlds/lab_corridor.yaml";
+      o.seed = seed;
+      o.duration = 900.0;
+      o.steer_by_truth = true;
+      const RunResult r = runWorld(o);
+      m.push_back(r.robots[0].odometry_error_m);
+      deg.push_back(r.robots[0].odometry_error_deg);
+      path = r.robots[0].path_length_m;
+    }
+  }
+  auto mean = [](const std::vector<double>& v) {
+    double s = 0;
+    for (double x : v) s += x;
+    return s / v.size();
+  };
+  auto stddev = [&](const std::vector<double>& v) {
+    const double mu = mean(v);
+    double s = 0;
+    for (double x : v) s += (x - mu) * (x - mu);
+    return std::sqrt(s / (v.size() - 1));
+  };
+  state.counters["path_m"] = path;
+  state.counters["error_m_mean"] = mean(m);
+  state.counters["error_m_std"] = stddev(m);
+  state.counters["error_deg_mean"] = mean(deg);
+  state.counters["error_deg_std"] = stddev(deg);
+}
+
+BENCHMARK(BM_DriftLoop20Seeds)->Iterations(1)->Unit(benchmark::kSecond);
 
 }  // namespace
 }  // namespace coopmap::bench

@@ -66,7 +66,7 @@ TEST(WorldLoaderTest, MinimalWorldLoads) {
 }
 
 TEST(WorldLoaderTest, ShippedWorldsLoad) {
-  for (const char* f : {"/worlds/lab.yaml"}) {
+  for (const char* f : {"/worlds/lab.yaml", "/worlds/lab_corridor.yaml"}) {
     const World w = loadWorld(kSrc + f);
     EXPECT_FALSE(w.robots.empty()) << f;
     EXPECT_EQ(w.home_base.corners.size(), 2u) << f;
