@@ -8,6 +8,7 @@
 #include <CLI/Formatter.hpp>
 
 #include "apps/corners_command.h"
+#include "apps/odometry_fit_command.h"
 #include "apps/run_world.h"
 #include "apps/stereo_eval_command.h"
 #include "core/io/json_writer.h"
@@ -135,9 +136,53 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
 
+  coopmap::OdometryFitOptions fit;
+  fit.robot_model = "robots/b14/b14.yaml";
+  auto* cmd_fit = app.add_subcommand(
+      "odometry-fit",
+      "Odometry error growth of a real log with ground truth (UTIAS MRCLAM format: 'time x y "
+      "theta' and 'time v w'), per metre driven and per radian turned, over windows; the "
+      "simulator preset with those errors; with --simulate, the same statistics of the "
+      "simulated robot driven by the log's commands with that preset.");
+  cmd_fit->add_option("--groundtruth", fit.groundtruth, "Ground-truth file")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd_fit->add_option("--odometry", fit.odometry, "Odometry file")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd_fit->add_option("--window", fit.window_s, "Window length (s)")->capture_default_str();
+  cmd_fit->add_flag("--simulate", fit.simulate, "Replay the commands on the simulated robot");
+  cmd_fit->add_option("--robot", fit.robot_model, "Robot model file for --simulate")
+      ->capture_default_str()
+      ->check(CLI::ExistingFile);
+  cmd_fit->add_option("--seed", fit.seed, "Seed of the simulated odometry")->capture_default_str();
+
   CLI11_PARSE(app, argc, argv);
 
   try {
+    if (cmd_fit->parsed()) {
+      const coopmap::OdometryFitResult r = coopmap::runOdometryFit(fit);
+      auto row = [](const char* name, const coopmap::DriftStats& s) {
+        std::printf("| %s | %d | %.2f | %.2f | %.5f | %.5f | %.4f | %.4f | %.4f | %.4f |\n", name,
+                    s.windows, s.metres_per_window, s.radians_per_window, s.heading_bias_per_m,
+                    s.turn_bias, s.scale_bias, s.heading_sigma_per_sqrt_m,
+                    s.heading_sigma_per_sqrt_rad, s.distance_sigma_per_sqrt_m);
+      };
+      std::printf(
+          "| source | windows | m/window | rad/window | heading bias rad/m | turn bias "
+          "rad/rad | scale bias | heading sigma rad/sqrt(m) | heading sigma "
+          "rad/sqrt(rad) | distance sigma m/sqrt(m) "
+          "|\n|---|---|---|---|---|---|---|---|---|---|\n");
+      row("real log", r.real);
+      if (fit.simulate) row("simulated, fitted preset", r.simulated);
+      const auto& p = r.preset;
+      std::printf(
+          "\nfitted preset (robot file, simulation.odometry):\n  preset: drifting\n"
+          "  scale_error: %.5f\n  turn_scale_error: %.5f\n  heading_drift: %.6f\n"
+          "  linear_noise: %.5f\n  angular_noise: %.5f\n  heading_noise: %.5f\n",
+          p.scale_error, p.turn_scale_error, p.heading_drift, p.linear_noise, p.angular_noise,
+          p.heading_noise);
+    }
     if (cmd_corners->parsed()) {
       const coopmap::CornersResult r = coopmap::runCorners(corners);
       std::printf(

@@ -65,7 +65,7 @@ RobotModel parseRobotModel(const std::string& text, const std::string& file) {
                                          "a friction coefficient in [0.01, 3]");
     if (const auto odo = sim->get("odometry")) {
       odo->allowOnly({"preset", "scale_error", "turn_scale_error", "heading_drift", "linear_noise",
-                      "angular_noise"});
+                      "angular_noise", "heading_noise"});
       sim::OdometryConfig& o = m.odometry;
       o.perfect = (*odo)["preset"].asEnum({"perfect", "drifting"}) == "perfect";
       o.scale_error =
@@ -76,6 +76,7 @@ RobotModel parseRobotModel(const std::string& text, const std::string& file) {
           optionalDouble(*odo, "heading_drift", 0.0, -0.49, 0.49, "rad/m in (-0.5, 0.5)");
       o.linear_noise = optionalDouble(*odo, "linear_noise", 0.0, 0.0, 0.99, "a number in [0, 1)");
       o.angular_noise = optionalDouble(*odo, "angular_noise", 0.0, 0.0, 0.99, "a number in [0, 1)");
+      o.heading_noise = optionalDouble(*odo, "heading_noise", 0.0, 0.0, 0.99, "a number in [0, 1)");
     }
   }
   return m;

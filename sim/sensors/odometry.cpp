@@ -17,6 +17,8 @@ void OdometryConfig::validate() const {
   if (!(std::abs(heading_drift) < 0.5)) bad("heading_drift", "rad/m in (-0.5, 0.5)", heading_drift);
   if (!(linear_noise >= 0.0 && linear_noise < 1.0))
     bad("linear_noise", "a number in [0, 1)", linear_noise);
+  if (!(heading_noise >= 0.0 && heading_noise < 1.0))
+    bad("heading_noise", "a number in [0, 1)", heading_noise);
   if (!(angular_noise >= 0.0 && angular_noise < 1.0))
     bad("angular_noise", "a number in [0, 1)", angular_noise);
 }
@@ -40,6 +42,8 @@ void OdometryModel::integrate(const BodyVelocity& v, const Pose2& true_pose, dou
       dtheta_true * (1.0 + config_.turn_scale_error) + config_.heading_drift * std::abs(ds_true);
   if (config_.angular_noise > 0.0)
     dtheta += config_.angular_noise * std::sqrt(std::abs(dtheta_true)) * normal_(rng_);
+  if (config_.heading_noise > 0.0)
+    dtheta += config_.heading_noise * std::sqrt(std::abs(ds_true)) * normal_(rng_);
   // Midpoint integration of the unicycle model.
   const double mid = pose_.theta + 0.5 * dtheta;
   pose_.x += ds * std::cos(mid);

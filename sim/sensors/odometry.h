@@ -17,6 +17,7 @@ struct OdometryConfig {
   double heading_drift = 0.0;     // rad per metre driven (wheel misalignment)
   double linear_noise = 0.0;      // fraction of speed, 1-sigma per sqrt(s)
   double angular_noise = 0.0;     // rad/s per sqrt(s) while turning, 1-sigma
+  double heading_noise = 0.0;     // rad per sqrt(m) driven, 1-sigma random walk
 
   void validate() const;  // throws std::invalid_argument naming the field
 };
