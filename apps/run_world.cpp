@@ -163,7 +163,8 @@ RunResult runWorld(const RunOptions& opt) {
       // the path is the intended one and odometry only records it.
       r.driver->command(
           r.follower->update(opt.steer_by_truth ? sim.truePose(i) : r.driver->odometry()));
-      all_done = all_done && r.follower->done();
+      // A robot without a route stays put for the whole run.
+      all_done = all_done && r.follower->done() && !sim.spec(i).route.empty();
     }
     if (progress && t >= next_progress) {
       drawProgress(t, opt.duration);

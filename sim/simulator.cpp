@@ -7,6 +7,8 @@ namespace coopmap::sim {
 
 Simulator::Simulator(World world, uint64_t seed) : world_(std::move(world)), seed_(seed) {
   physics_ = std::make_unique<PhysicsWorld>(world_, 1.0 / world_.physics_rate);
+  for (const PersonSpec& p : world_.people)
+    people_.push_back(physics_->addKinematicCylinder(p.radius, p.height, p.positionAt(0.0)));
 }
 
 Simulator::~Simulator() = default;
@@ -37,6 +39,8 @@ void Simulator::advance(double dt) {
   const double h = physics_->stepSize();
   const int64_t target = static_cast<int64_t>(std::llround((time() + dt) / h));
   while (steps_ < target) {
+    for (size_t k = 0; k < people_.size(); ++k)
+      physics_->moveKinematic(people_[k], world_.people[k].positionAt((steps_ + 1) * h));
     physics_->step();
     ++steps_;
     for (RobotState& r : robots_)
@@ -73,6 +77,8 @@ TrinocularFrame Simulator::capture(int robot, cv::Mat* truth_depth) {
     const Pose2 p = truePose(k);
     others.push_back({{p.x, p.y}, d.body_radius, d.body_height});
   }
+  for (const PersonSpec& p : world_.people)
+    others.push_back({p.positionAt(time()), p.radius, p.height});
   TrinocularFrame f;
   f.stamp = time();
   f.odometry = odometry(robot);

@@ -70,6 +70,7 @@ class Simulator {
   std::unique_ptr<PhysicsWorld> physics_;
   std::unique_ptr<Renderer> renderer_;  // created with the first robot (needs its intrinsics)
   std::vector<RobotState> robots_;
+  std::vector<int> people_;  // kinematic bodies, one per world person
   int64_t steps_ = 0;
 };
 

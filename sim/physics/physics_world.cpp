@@ -30,6 +30,7 @@ struct PhysicsWorld::Impl {
   std::vector<std::unique_ptr<btRigidBody>> statics;
   btRigidBody* floor = nullptr;
   std::vector<std::unique_ptr<Robot>> robots;
+  std::vector<btRigidBody*> kinematic;  // owned by statics
 
   ~Impl() {
     for (auto& r : robots) world.removeRigidBody(r->body.get());
@@ -71,6 +72,28 @@ PhysicsWorld::PhysicsWorld(const World& world, double step)
 }
 
 PhysicsWorld::~PhysicsWorld() = default;
+
+int PhysicsWorld::addKinematicCylinder(double radius, double height,
+                                       const Eigen::Vector2d& position) {
+  Impl& im = *impl_;
+  btTransform pose;
+  pose.setIdentity();
+  pose.setOrigin(btVector3(position.x(), position.y(), 0.5 * height + 0.001));
+  btRigidBody* body = im.addStatic(
+      std::make_unique<btCylinderShapeZ>(btVector3(radius, radius, 0.5 * height)), pose, 0.3);
+  body->setCollisionFlags(body->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
+  body->setActivationState(DISABLE_DEACTIVATION);
+  im.kinematic.push_back(body);
+  return static_cast<int>(im.kinematic.size()) - 1;
+}
+
+void PhysicsWorld::moveKinematic(int index, const Eigen::Vector2d& position) {
+  btRigidBody* body = impl_->kinematic.at(index);
+  btTransform pose = body->getWorldTransform();
+  pose.setOrigin(btVector3(position.x(), position.y(), pose.getOrigin().z()));
+  body->setWorldTransform(pose);
+  body->setInterpolationWorldTransform(pose);
+}
 
 int PhysicsWorld::robotCount() const { return static_cast<int>(impl_->robots.size()); }
 

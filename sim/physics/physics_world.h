@@ -37,6 +37,11 @@ class PhysicsWorld {
   // Adds a robot resting on the floor at `start`; returns its index.
   int addRobot(const RobotDescription& robot, const Pose2& start, const DriveConfig& drive);
 
+  // Adds a kinematic vertical cylinder (a person) at `position`; returns its index.
+  int addKinematicCylinder(double radius, double height, const Eigen::Vector2d& position);
+  // Moves a kinematic cylinder (before the next step).
+  void moveKinematic(int index, const Eigen::Vector2d& position);
+
   // Sets a robot's velocity command; the base applies its speed and acceleration limits.
   void command(int robot, const MotionCommand& cmd);
   // Advances by one fixed step.

@@ -65,6 +65,20 @@ struct HomeBaseSpec {
   std::string texture;
 };
 
+// A person walking a path at a steady speed (a kinematic body: it pushes, it is not pushed).
+struct PersonSpec {
+  std::string name;
+  double radius = 0.25;               // m
+  double height = 1.7;                // m
+  double speed = 1.2;                 // m/s
+  double start_time = 0;              // s: stands at the path's start until then
+  bool loop = false;                  // walk the path again and again; else stop at its end
+  std::vector<Eigen::Vector2d> path;  // at least two points
+
+  // Where the person stands at time t (s).
+  Eigen::Vector2d positionAt(double t) const;
+};
+
 struct RobotSpec {
   std::string name;
   std::string model_file;  // resolved path of the robot model YAML
@@ -84,6 +98,7 @@ struct World {
   std::vector<DoorSpec> doors;
   HomeBaseSpec home_base;
   std::vector<RobotSpec> robots;
+  std::vector<PersonSpec> people;
   double map_resolution = 0.05;  // m per cell for maps and ground truth
   double physics_rate = 200.0;   // Hz
   double sensing_rate = 3.0;     // Hz (the paper's rate)

@@ -122,10 +122,31 @@ std::vector<SolidBox> World::solids() const {
   return out;
 }
 
+Eigen::Vector2d PersonSpec::positionAt(double t) const {
+  if (path.size() < 2) return path.empty() ? Eigen::Vector2d::Zero() : path.front();
+  double length = 0.0;
+  for (size_t i = 1; i < path.size(); ++i) length += (path[i] - path[i - 1]).norm();
+  double s = std::max(0.0, t - start_time) * speed;
+  if (loop) {
+    s = std::fmod(s, length + (path.back() - path.front()).norm());
+  } else if (s >= length) {
+    return path.back();
+  }
+  // Along the path, closing it back to the start when looping.
+  for (size_t i = 1; i <= path.size(); ++i) {
+    const Eigen::Vector2d& a = path[i - 1];
+    const Eigen::Vector2d& b = i < path.size() ? path[i] : path.front();
+    const double seg = (b - a).norm();
+    if (s <= seg || i == path.size()) return seg > 0 ? a + (b - a) * std::min(1.0, s / seg) : a;
+    s -= seg;
+  }
+  return path.back();
+}
+
 World parseWorld(const std::string& text, const std::string& file) {
   const YamlField root = YamlField::loadString(text, file);
   root.allowOnly({"name", "seed", "floor", "simulation", "textures", "walls", "boxes", "doors",
-                  "home_base", "robots"});
+                  "home_base", "robots", "people"});
   World w;
   w.file = file;
   w.name = root["name"].asString();
@@ -215,6 +236,26 @@ World parseWorld(const std::string& text, const std::string& file) {
   w.home_base.height =
       optionalDouble(hb, "height", w.home_base.height, 0.3, 3.0, "a height in [0.3, 3] m");
   w.home_base.texture = textureRef(hb, w, "");
+
+  if (const auto people = root.get("people")) {
+    for (const YamlField& f : people->elements()) {
+      f.allowOnly({"name", "radius", "height", "speed", "start_time", "loop", "path"});
+      PersonSpec p;
+      p.name = f["name"].asString();
+      p.radius = optionalDouble(f, "radius", p.radius, 0.1, 1.0, "a radius in [0.1, 1] m");
+      p.height = optionalDouble(f, "height", p.height, 0.5, 2.5, "a height in [0.5, 2.5] m");
+      p.speed = optionalDouble(f, "speed", p.speed, 0.0, 3.0, "a walking speed in [0, 3] m/s");
+      p.start_time = optionalDouble(f, "start_time", 0.0, 0.0, 1e6, "a time >= 0 s");
+      if (f.has("loop")) p.loop = f["loop"].asBool();
+      const auto points = f["path"].elements();
+      if (points.size() < 2) f["path"].fail("a list of at least 2 points");
+      for (const YamlField& pt : points) {
+        p.path.push_back(pt.asVector2());
+        if (!inside(w, p.path.back())) pt.fail("a point on the floor");
+      }
+      w.people.push_back(std::move(p));
+    }
+  }
 
   const std::filesystem::path base = std::filesystem::path(file).parent_path();
   std::set<std::string> names;

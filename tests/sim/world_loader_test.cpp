@@ -133,3 +133,27 @@ TEST(WorldLoaderTest, MissingFile) {
 
 }  // namespace
 }  // namespace coopmap::sim
+
+namespace coopmap::sim {
+namespace {
+
+TEST(WorldLoaderTest, PeopleWalkTheirPaths) {
+  const World w = parseWorld(
+      minimal() +
+          "people:\n  - {name: ann, speed: 1.0, start_time: 1.0, path: [[1, 1], [4, 1], [4, 3]]}\n",
+      "w.yaml");
+  ASSERT_EQ(w.people.size(), 1u);
+  const PersonSpec& p = w.people[0];
+  EXPECT_EQ(p.positionAt(0.5), Eigen::Vector2d(1, 1));  // waits for its start time
+  EXPECT_TRUE(p.positionAt(3.0).isApprox(Eigen::Vector2d(3, 1)));
+  EXPECT_TRUE(p.positionAt(5.0).isApprox(Eigen::Vector2d(4, 2)));
+  EXPECT_EQ(p.positionAt(60.0), Eigen::Vector2d(4, 3));  // stays at the end
+}
+
+TEST(WorldLoaderTest, PersonPathNeedsTwoPoints) {
+  const std::string e = errorOf(minimal() + "people:\n  - {name: ann, path: [[1, 1]]}\n");
+  EXPECT_EQ(e, "w.yaml:18:23: people[0].path: expected a list of at least 2 points, got a list");
+}
+
+}  // namespace
+}  // namespace coopmap::sim

@@ -1,0 +1,92 @@
+// Scenario: a person walks across in front of a robot that stands still. The person must
+// show in the robot's radial maps while crossing, and leave no obstacle in the map once
+// the cells are seen free again; a person walking into a robot is a counted contact.
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "apps/run_world.h"
+#include "core/localization/home_base.h"
+
+namespace coopmap {
+namespace {
+
+std::string writeWorld(const std::string& people) {
+  const std::string path =
+      (std::filesystem::temp_directory_path() / "coopmap_people_world.yaml").string();
+  std::ofstream(path) << R"(
+name: crossing
+textures:
+  carpet: {type: noise, tile: 2.0, feature: 0.03, mean: 105, contrast: 30}
+  poster: {type: posters, tile: 2.5, feature: 0.04, mean: 128, contrast: 70}
+floor: {min: [-1, -4], max: [4, 4], texture: carpet}
+walls:
+  - {from: [3.8, -4], to: [3.8, 4], thickness: 0.1, height: 2.5, texture: poster}
+home_base:
+  corners:
+    - {position: [0, 3.5], heading_deg: 0}
+    - {position: [1, 3.5], heading_deg: 0}
+  texture: poster
+robots:
+  - name: r
+    model: )" + std::string(COOPMAP_SOURCE_DIR) +
+                             R"(/robots/b14/b14.yaml
+    start: {position: [0, 0], heading_deg: 0}
+)" + people;
+  return path;
+}
+
+TEST(PeopleScenarioTest, PersonCrossingShowsThenLeavesNoObstacle) {
+  // Walks from y = -3.5 to y = 3.5 along x = 2.5, crossing the view from t = 2 s to ~5 s.
+  RunOptions o;
+  o.world_file = writeWorld(R"(people:
+  - {name: ann, radius: 0.25, speed: 1.0, start_time: 0.5, path: [[2.5, -3.5], [2.5, 3.5]]}
+)");
+  o.robots = 1;
+  o.duration = 12.0;
+  o.odometry = "perfect";
+  const RunResult r = runWorld(o);
+  const RobotRunResult& robot = r.robots[0];
+  // While crossing, some scan sees the person ~2.25 m ahead (the wall is at ~4.85 m).
+  int person_scans = 0;
+  for (const RadialMap& scan : robot.traverse)
+    for (const RadialReading& rd : scan.readings)
+      if (rd.kind == RadialKind::kHit && rd.range < 2.8) {
+        ++person_scans;
+        break;
+      }
+  EXPECT_GE(person_scans, 3);
+  EXPECT_EQ(robot.collisions, 0);
+  // After the crossing the map holds the wall but not the person: the cells the person
+  // walked through (x 2.25..2.75 in view) are seen and none is occupied.
+  EXPECT_GE(robot.map.wall_recall, 0.8);
+  const MapLimits lim = MapLimits::covering({-1.5, -4.5}, {4.5, 4.5}, 0.05);
+  const OccupancyGrid map = localMap(robot.traverse, lim);
+  int seen = 0, occupied = 0;
+  for (double y = -1.5; y <= 1.5; y += 0.05)
+    for (double x = 2.3; x <= 2.7; x += 0.05) {
+      const int ix = lim.cellX(x), iy = lim.cellY(y);
+      seen += map.seen(ix, iy);
+      occupied += map.state(ix, iy) == CellState::kOccupied;
+    }
+  EXPECT_GT(seen, 400);
+  EXPECT_EQ(occupied, 0);
+}
+
+TEST(PeopleScenarioTest, PersonWalkingIntoTheRobotIsAContact) {
+  RunOptions o;
+  o.world_file = writeWorld(R"(people:
+  - {name: bob, radius: 0.25, speed: 0.8, path: [[3.0, 0.0], [-0.5, 0.0]]}
+)");
+  o.robots = 1;
+  o.duration = 6.0;
+  o.odometry = "perfect";
+  const RunResult r = runWorld(o);
+  EXPECT_GE(r.robots[0].collisions, 1);
+  // The kinematic person pushes the robot back.
+  EXPECT_LT(r.robots[0].groundtruth.back().pose.x, -0.05);
+}
+
+}  // namespace
+}  // namespace coopmap
