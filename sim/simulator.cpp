@@ -9,6 +9,8 @@ Simulator::Simulator(World world, uint64_t seed) : world_(std::move(world)), see
   physics_ = std::make_unique<PhysicsWorld>(world_, 1.0 / world_.physics_rate);
   for (const PersonSpec& p : world_.people)
     people_.push_back(physics_->addKinematicCylinder(p.radius, p.height, p.positionAt(0.0)));
+  for (const DoorSpec& d : world_.doors)
+    if (d.scheduled()) doors_.push_back(physics_->addKinematicBox(d.panel()));
 }
 
 Simulator::~Simulator() = default;
@@ -39,8 +41,12 @@ void Simulator::advance(double dt) {
   const double h = physics_->stepSize();
   const int64_t target = static_cast<int64_t>(std::llround((time() + dt) / h));
   while (steps_ < target) {
+    const double t_next = (steps_ + 1) * h;
     for (size_t k = 0; k < people_.size(); ++k)
-      physics_->moveKinematic(people_[k], world_.people[k].positionAt((steps_ + 1) * h));
+      physics_->moveKinematic(people_[k], world_.people[k].positionAt(t_next));
+    size_t door = 0;
+    for (const DoorSpec& d : world_.doors)
+      if (d.scheduled()) physics_->moveKinematic(doors_[door++], d.center, !d.openAt(t_next));
     physics_->step();
     ++steps_;
     for (RobotState& r : robots_)
@@ -82,9 +88,10 @@ TrinocularFrame Simulator::capture(int robot, cv::Mat* truth_depth) {
   TrinocularFrame f;
   f.stamp = time();
   f.odometry = odometry(robot);
-  renderer_->render(cameraPose(robot, 0), others, f.reference, truth_depth);
-  renderer_->render(cameraPose(robot, 1), others, f.horizontal);
-  renderer_->render(cameraPose(robot, 2), others, f.vertical);
+  const std::vector<SolidBox> boxes = world_.doorsClosedAt(time());
+  renderer_->render(cameraPose(robot, 0), others, boxes, f.reference, truth_depth);
+  renderer_->render(cameraPose(robot, 1), others, boxes, f.horizontal);
+  renderer_->render(cameraPose(robot, 2), others, boxes, f.vertical);
   std::vector<CameraModel>& cams = robots_.at(robot).cameras;
   cams[0].apply(f.reference);
   cams[1].apply(f.horizontal);

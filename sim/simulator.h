@@ -71,6 +71,7 @@ class Simulator {
   std::unique_ptr<Renderer> renderer_;  // created with the first robot (needs its intrinsics)
   std::vector<RobotState> robots_;
   std::vector<int> people_;  // kinematic bodies, one per world person
+  std::vector<int> doors_;   // kinematic bodies, one per scheduled door
   int64_t steps_ = 0;
 };
 

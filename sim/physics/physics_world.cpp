@@ -31,6 +31,7 @@ struct PhysicsWorld::Impl {
   btRigidBody* floor = nullptr;
   std::vector<std::unique_ptr<Robot>> robots;
   std::vector<btRigidBody*> kinematic;  // owned by statics
+  std::vector<double> kinematic_z;      // their centres' heights when present
 
   ~Impl() {
     for (auto& r : robots) world.removeRigidBody(r->body.get());
@@ -84,13 +85,32 @@ int PhysicsWorld::addKinematicCylinder(double radius, double height,
   body->setCollisionFlags(body->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
   body->setActivationState(DISABLE_DEACTIVATION);
   im.kinematic.push_back(body);
+  im.kinematic_z.push_back(0.5 * height + 0.001);
   return static_cast<int>(im.kinematic.size()) - 1;
 }
 
-void PhysicsWorld::moveKinematic(int index, const Eigen::Vector2d& position) {
+int PhysicsWorld::addKinematicBox(const SolidBox& box) {
+  Impl& im = *impl_;
+  btTransform pose;
+  pose.setIdentity();
+  pose.setOrigin(btVector3(box.center.x(), box.center.y(), box.z0 + 0.5 * box.size.z()));
+  pose.setRotation(btQuaternion(btVector3(0, 0, 1), static_cast<btScalar>(box.yaw)));
+  btRigidBody* body = im.addStatic(std::make_unique<btBoxShape>(btVector3(
+                                       0.5 * box.size.x(), 0.5 * box.size.y(), 0.5 * box.size.z())),
+                                   pose, 0.3);
+  body->setCollisionFlags(body->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
+  body->setActivationState(DISABLE_DEACTIVATION);
+  im.kinematic.push_back(body);
+  im.kinematic_z.push_back(box.z0 + 0.5 * box.size.z());
+  return static_cast<int>(im.kinematic.size()) - 1;
+}
+
+void PhysicsWorld::moveKinematic(int index, const Eigen::Vector2d& position, bool present) {
   btRigidBody* body = impl_->kinematic.at(index);
   btTransform pose = body->getWorldTransform();
-  pose.setOrigin(btVector3(position.x(), position.y(), pose.getOrigin().z()));
+  // Out of the way: far below the floor, where nothing else is.
+  const double z = present ? impl_->kinematic_z.at(index) : -100.0;
+  pose.setOrigin(btVector3(position.x(), position.y(), z));
   body->setWorldTransform(pose);
   body->setInterpolationWorldTransform(pose);
 }

@@ -39,8 +39,10 @@ class PhysicsWorld {
 
   // Adds a kinematic vertical cylinder (a person) at `position`; returns its index.
   int addKinematicCylinder(double radius, double height, const Eigen::Vector2d& position);
-  // Moves a kinematic cylinder (before the next step).
-  void moveKinematic(int index, const Eigen::Vector2d& position);
+  // Adds a kinematic box (a door that opens and closes); returns its index.
+  int addKinematicBox(const SolidBox& box);
+  // Moves a kinematic body (before the next step); `present` false puts it out of the way.
+  void moveKinematic(int index, const Eigen::Vector2d& position, bool present = true);
 
   // Sets a robot's velocity command; the base applies its speed and acceleration limits.
   void command(int robot, const MotionCommand& cmd);

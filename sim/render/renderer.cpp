@@ -182,7 +182,7 @@ Renderer::~Renderer() {
 }
 
 void Renderer::render(const Eigen::Isometry3d& X_WC, const std::vector<DynamicCylinder>& others,
-                      cv::Mat& grey, cv::Mat* depth) {
+                      const std::vector<SolidBox>& boxes, cv::Mat& grey, cv::Mat* depth) {
   Impl& im = *impl_;
   const CameraIntrinsics& k = intrinsics_;
   if (!OSMesaMakeCurrent(im.context, im.buffer.data(), GL_UNSIGNED_BYTE, k.width, k.height))
@@ -217,6 +217,13 @@ void Renderer::render(const Eigen::Isometry3d& X_WC, const std::vector<DynamicCy
     im.dynamic_vertices.clear();
     for (const DynamicCylinder& c : others) addCylinder(im.dynamic_vertices, c, im.dynamic_tile);
     glBindTexture(GL_TEXTURE_2D, im.dynamic_texture);
+    Impl::draw(im.dynamic_vertices.data(), im.dynamic_vertices.size());
+  }
+  for (const SolidBox& box : boxes) {
+    const Impl::Batch& batch = im.batches.at(box.texture);
+    im.dynamic_vertices.clear();
+    addBox(im.dynamic_vertices, box, batch.tile);
+    glBindTexture(GL_TEXTURE_2D, batch.texture);
     Impl::draw(im.dynamic_vertices.data(), im.dynamic_vertices.size());
   }
   glFinish();

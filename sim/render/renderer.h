@@ -32,9 +32,10 @@ class Renderer {
 
   // Renders the view of a camera at X_WC (OpenCV camera frame: x right, y down, z forward,
   // in the 3D world frame: z up). `grey` gets CV_8UC1; `depth`, if given, CV_32F metres
-  // along the optical axis (0 where nothing was hit). `others` are drawn as cylinders.
+  // along the optical axis (0 where nothing was hit). `others` (robots, people) are drawn
+  // as cylinders, `boxes` (doors now closed) with their textures.
   void render(const Eigen::Isometry3d& X_WC, const std::vector<DynamicCylinder>& others,
-              cv::Mat& grey, cv::Mat* depth = nullptr);
+              const std::vector<SolidBox>& boxes, cv::Mat& grey, cv::Mat* depth = nullptr);
 
   const CameraIntrinsics& intrinsics() const { return intrinsics_; }
 

@@ -28,10 +28,11 @@ GridU8 floorMask(const World& world, const MapLimits& limits) {
   return mask;
 }
 
-GridU8 trueOccupancy(const World& world, const MapLimits& limits, double max_height) {
-  GridU8 truth(limits, 0);
+namespace {
+void rasterise(GridU8& truth, const std::vector<SolidBox>& boxes, double max_height) {
+  const MapLimits& limits = truth.limits;
   constexpr int kSub = 4;
-  for (const SolidBox& box : world.solids()) {
+  for (const SolidBox& box : boxes) {
     if (box.z0 > max_height || box.z0 + box.size.z() <= 0.0) continue;
     // Bounding rectangle of the rotated footprint.
     const double c = std::abs(std::cos(box.yaw)), s = std::abs(std::sin(box.yaw));
@@ -55,6 +56,26 @@ GridU8 trueOccupancy(const World& world, const MapLimits& limits, double max_hei
         }
       }
     }
+  }
+}
+}  // namespace
+
+GridU8 trueOccupancy(const World& world, const MapLimits& limits, double max_height) {
+  GridU8 truth(limits, 0);
+  rasterise(truth, world.solids(), max_height);
+  return truth;
+}
+
+GridU8 trueOccupancyAt(const World& world, const MapLimits& limits, double max_height, double t) {
+  GridU8 truth = trueOccupancy(world, limits, max_height);
+  rasterise(truth, world.doorsClosedAt(t), max_height);
+  for (const PersonSpec& p : world.people) {
+    const Eigen::Vector2d c = p.positionAt(t);
+    for (int iy = limits.cellY(c.y() - p.radius); iy <= limits.cellY(c.y() + p.radius); ++iy)
+      for (int ix = limits.cellX(c.x() - p.radius); ix <= limits.cellX(c.x() + p.radius); ++ix)
+        if (limits.contains(ix, iy) &&
+            (limits.cellCenter(ix, iy) - c).norm() <= p.radius + 0.5 * limits.resolution)
+          truth.at(ix, iy) = 1;
   }
   return truth;
 }

@@ -13,6 +13,10 @@ MapLimits worldMapLimits(const World& world, double margin = 0.5);
 // each cell is sampled at 4x4 points, so partly covered cells count as occupied.
 GridU8 trueOccupancy(const World& world, const MapLimits& limits, double max_height);
 
+// The true occupancy at time t (s): the static solids plus the doors closed at t and the
+// people where they stand at t.
+GridU8 trueOccupancyAt(const World& world, const MapLimits& limits, double max_height, double t);
+
 // 1 for cells whose centre lies on the floor (where a robot can be at all).
 GridU8 floorMask(const World& world, const MapLimits& limits);
 

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -47,8 +48,13 @@ struct DoorSpec {
   Eigen::Vector2d center{0.0, 0.0};
   double width = 0.9;
   double yaw = 0.0;  // direction along the doorway
-  bool open = true;
+  bool open = true;  // at the start
   std::string texture;
+  std::vector<std::pair<double, bool>> schedule;  // (time s, open) changes, in time order
+
+  bool openAt(double t) const;
+  bool scheduled() const { return !schedule.empty(); }
+  SolidBox panel() const;  // the closed door's box
 };
 
 // The home-base landmark: two L-shaped corners. Each corner's arms leave its vertex at
@@ -104,8 +110,11 @@ struct World {
   double sensing_rate = 3.0;     // Hz (the paper's rate)
   double control_rate = 20.0;    // Hz
 
-  // Every solid in the world as boxes: walls, furniture, closed doors, home-base arms.
+  // Every solid that never moves, as boxes: walls, furniture, doors that stay closed,
+  // home-base arms.
   std::vector<SolidBox> solids() const;
+  // Solids that come and go: the doors on a schedule that are closed at time t (s).
+  std::vector<SolidBox> doorsClosedAt(double t) const;
 };
 
 // Loads a world file. Errors (ConfigError) name the file, line and field.

@@ -81,6 +81,30 @@ bool inside(const World& w, const Eigen::Vector2d& p) {
 }
 }  // namespace
 
+bool DoorSpec::openAt(double t) const {
+  bool state = open;
+  for (const auto& [at, opened] : schedule)
+    if (at <= t) state = opened;
+  return state;
+}
+
+SolidBox DoorSpec::panel() const {
+  SolidBox b;
+  b.center = center;
+  b.size = {width, 0.05, 2.0};
+  b.yaw = yaw;
+  b.texture = texture;
+  b.kind = "door";
+  return b;
+}
+
+std::vector<SolidBox> World::doorsClosedAt(double t) const {
+  std::vector<SolidBox> out;
+  for (const DoorSpec& door : doors)
+    if (door.scheduled() && !door.openAt(t)) out.push_back(door.panel());
+  return out;
+}
+
 std::vector<SolidBox> World::solids() const {
   std::vector<SolidBox> out;
   for (const WallSpec& wall : walls) {
@@ -94,16 +118,8 @@ std::vector<SolidBox> World::solids() const {
     out.push_back(b);
   }
   for (const SolidBox& box : boxes) out.push_back(box);
-  for (const DoorSpec& door : doors) {
-    if (door.open) continue;
-    SolidBox b;
-    b.center = door.center;
-    b.size = {door.width, 0.05, 2.0};
-    b.yaw = door.yaw;
-    b.texture = door.texture;
-    b.kind = "door";
-    out.push_back(b);
-  }
+  for (const DoorSpec& door : doors)
+    if (!door.open && !door.scheduled()) out.push_back(door.panel());
   const HomeBaseSpec& hb = home_base;
   for (const HomeBaseSpec::Corner& c : hb.corners) {
     for (double side : {-1.0, 1.0}) {
@@ -206,13 +222,23 @@ World parseWorld(const std::string& text, const std::string& file) {
   }
   if (const auto doors = root.get("doors")) {
     for (const YamlField& f : doors->elements()) {
-      f.allowOnly({"center", "width", "yaw_deg", "open", "texture"});
+      f.allowOnly({"center", "width", "yaw_deg", "open", "texture", "schedule"});
       DoorSpec d;
       d.center = f["center"].asVector2();
       d.width = optionalDouble(f, "width", d.width, 0.3, 5.0, "a width in [0.3, 5] m");
       d.yaw = optionalDouble(f, "yaw_deg", 0.0, -360, 360, "degrees in [-360, 360]") * kDeg;
       if (f.has("open")) d.open = f["open"].asBool();
       d.texture = textureRef(f, w, w.walls.empty() ? "" : w.walls.front().texture);
+      if (const auto schedule = f.get("schedule")) {
+        double last = -1.0;
+        for (const YamlField& e : schedule->elements()) {
+          e.allowOnly({"at", "open"});
+          const double at = e["at"].asDouble(0.0, 1e7, "a time >= 0 s");
+          if (at <= last) e["at"].fail("a time after the previous change");
+          last = at;
+          d.schedule.push_back({at, e["open"].asBool()});
+        }
+      }
       w.doors.push_back(d);
     }
   }
