@@ -252,7 +252,7 @@ StereoStats TrinocularMatcher::compute(const cv::Mat& reference, const cv::Mat& 
       // The centre pixel itself must match: near depth edges a window can win with its
       // other pixels while the centre belongs to the surface behind ("fattening").
       if (config_.max_centre_difference > 0 &&
-          centreDifference(ref_row, partners, x, yc, ch.d) > config_.max_centre_difference) {
+          !centreMatches(ref_row, partners, x, yc, ch.d, config_.max_centre_difference)) {
         ++stats.rejected_centre;
         continue;
       }

@@ -78,10 +78,10 @@ class TrinocularMatcher {
   void preparePair(Pair& pair, const cv::Mat& partner);
   sad::PairRow pairRow(Pair& pair, const cv::Mat& partner, int y);
   void computeTexture(const cv::Mat& reference);
-  // Mean absolute difference between reference pixel (x, y) (its row given) and its
-  // partner pixels at integer disparity d; pairs that do not see it are skipped.
-  int centreDifference(const uint8_t* ref_row, const cv::Mat* const partners[2], int x, int y,
-                       int d) const {
+  // Whether reference pixel (x, y) (its row given) matches its partner pixels at integer
+  // disparity d: mean absolute difference at most `max` (pairs not seeing it are skipped).
+  bool centreMatches(const uint8_t* ref_row, const cv::Mat* const partners[2], int x, int y,
+                     int d, int max) const {
     int sum = 0, n = 0;
     for (int p = 0; p < 2; ++p) {
       const Pair& pair = pairs_[p];
@@ -94,7 +94,7 @@ class TrinocularMatcher {
       sum += diff < 0 ? -diff : diff;
       ++n;
     }
-    return n ? sum / n : 0;
+    return sum <= max * n;
   }
 
   TrinocularRig rig_;
