@@ -40,10 +40,9 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   cmd_run->add_option("--robots", robots, "Use only the first N robots of the world")
       ->check(CLI::PositiveNumber);
-  cmd_run
-      ->add_option("--odometry", odometry,
-                   "Override the robot file's odometry: 'perfect' or 'drifting'")
-      ->check(CLI::IsMember({"perfect", "drifting"}));
+  cmd_run->add_option("--odometry", odometry,
+                      "Override the robot file's odometry: 'perfect', 'drifting' (its default "
+                      "preset), or the name of a preset in the robot file (e.g. utias_robot1)");
   double sensing_rate = 0.0;
   cmd_run
       ->add_option("--sensing-rate", sensing_rate,

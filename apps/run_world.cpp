@@ -106,10 +106,21 @@ RunResult runWorld(const RunOptions& opt) {
     const sim::RobotSpec& spec = world.robots[i];
     RobotModel model = loadRobotModel(spec.model_file);
     if (opt.odometry) {
-      if (*opt.odometry != "perfect" && *opt.odometry != "drifting")
-        throw std::invalid_argument("--odometry: expected 'perfect' or 'drifting', got '" +
-                                    *opt.odometry + "'");
-      model.odometry.perfect = *opt.odometry == "perfect";
+      if (*opt.odometry == "perfect") {
+        model.odometry.perfect = true;
+      } else if (*opt.odometry == "drifting") {
+        model.odometry.perfect = false;
+      } else {
+        const auto preset = model.odometry_presets.find(*opt.odometry);
+        if (preset == model.odometry_presets.end()) {
+          std::string known = "perfect, drifting";
+          for (const auto& [name, c] : model.odometry_presets) known += ", " + name;
+          throw std::invalid_argument("--odometry: expected one of " + known + " (presets of " +
+                                      spec.model_file + "), got '" + *opt.odometry + "'");
+        }
+        model.odometry = preset->second;
+        model.odometry.perfect = false;
+      }
     }
     if (!opt.camera_noise) model.cameras = sim::CameraNoiseConfig{};
     const int index =

@@ -22,7 +22,7 @@ struct RunOptions {
   uint64_t seed = 1;
   double duration = 600.0;              // s of simulated time at most
   std::optional<int> robots;            // use only the first N robots of the world
-  std::optional<std::string> odometry;  // "perfect" or "drifting" overrides the model file
+  std::optional<std::string> odometry;  // "perfect", "drifting" or a preset of the model file
   bool camera_noise = true;             // false: noise-free cameras whatever the model says
   bool steer_by_truth = false;          // follow the route by the true pose (drift experiments)
   std::optional<double> sensing_rate;   // Hz; overrides the world's

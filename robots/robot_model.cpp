@@ -8,6 +8,23 @@
 
 namespace coopmap {
 
+namespace {
+sim::OdometryConfig parseOdometry(const YamlField& odo) {
+  odo.allowOnly({"preset", "scale_error", "turn_scale_error", "heading_drift", "linear_noise",
+                 "angular_noise", "heading_noise", "source"});
+  sim::OdometryConfig o;
+  o.perfect = odo.has("preset") && odo["preset"].asEnum({"perfect", "drifting"}) == "perfect";
+  o.scale_error = optionalDouble(odo, "scale_error", 0.0, -0.49, 0.49, "a fraction in (-0.5, 0.5)");
+  o.turn_scale_error =
+      optionalDouble(odo, "turn_scale_error", 0.0, -0.49, 0.49, "a fraction in (-0.5, 0.5)");
+  o.heading_drift = optionalDouble(odo, "heading_drift", 0.0, -0.49, 0.49, "rad/m in (-0.5, 0.5)");
+  o.linear_noise = optionalDouble(odo, "linear_noise", 0.0, 0.0, 0.99, "a number in [0, 1)");
+  o.angular_noise = optionalDouble(odo, "angular_noise", 0.0, 0.0, 0.99, "a number in [0, 1)");
+  o.heading_noise = optionalDouble(odo, "heading_noise", 0.0, 0.0, 0.99, "a number in [0, 1)");
+  return o;
+}
+}  // namespace
+
 RobotModel parseRobotModel(const std::string& text, const std::string& file) {
   const YamlField root = YamlField::loadString(text, file);
   root.allowOnly({"model", "body", "limits", "cameras", "simulation"});
@@ -50,7 +67,7 @@ RobotModel parseRobotModel(const std::string& text, const std::string& file) {
     cam["vertical_offset"].fail("[0, b, 0] with |b| > 5 mm (a rectified vertical partner)");
 
   if (const auto sim = root.get("simulation")) {
-    sim->allowOnly({"mass", "traction_mu", "odometry", "camera_noise"});
+    sim->allowOnly({"mass", "traction_mu", "odometry", "odometry_presets", "camera_noise"});
     if (const auto cn = sim->get("camera_noise")) {
       cn->allowOnly({"pixel_sigma", "gain_spread", "offset_spread", "blur_sigma"});
       sim::CameraNoiseConfig& c = m.cameras;
@@ -63,22 +80,16 @@ RobotModel parseRobotModel(const std::string& text, const std::string& file) {
         optionalDouble(*sim, "mass", m.drive.mass, 1.0, 1000.0, "a mass in [1, 1000] kg");
     m.drive.traction_mu = optionalDouble(*sim, "traction_mu", m.drive.traction_mu, 0.01, 3.0,
                                          "a friction coefficient in [0.01, 3]");
-    if (const auto odo = sim->get("odometry")) {
-      odo->allowOnly({"preset", "scale_error", "turn_scale_error", "heading_drift", "linear_noise",
-                      "angular_noise", "heading_noise"});
-      sim::OdometryConfig& o = m.odometry;
-      o.perfect = (*odo)["preset"].asEnum({"perfect", "drifting"}) == "perfect";
-      o.scale_error =
-          optionalDouble(*odo, "scale_error", 0.0, -0.49, 0.49, "a fraction in (-0.5, 0.5)");
-      o.turn_scale_error =
-          optionalDouble(*odo, "turn_scale_error", 0.0, -0.49, 0.49, "a fraction in (-0.5, 0.5)");
-      o.heading_drift =
-          optionalDouble(*odo, "heading_drift", 0.0, -0.49, 0.49, "rad/m in (-0.5, 0.5)");
-      o.linear_noise = optionalDouble(*odo, "linear_noise", 0.0, 0.0, 0.99, "a number in [0, 1)");
-      o.angular_noise = optionalDouble(*odo, "angular_noise", 0.0, 0.0, 0.99, "a number in [0, 1)");
-      o.heading_noise = optionalDouble(*odo, "heading_noise", 0.0, 0.0, 0.99, "a number in [0, 1)");
-    }
+    if (const auto odo = sim->get("odometry")) m.odometry = parseOdometry(*odo);
+    m.odometry_presets["default"] = m.odometry;
+    if (const auto presets = sim->get("odometry_presets"))
+      for (const std::string& name : presets->keys()) {
+        if (name == "perfect" || name == "drifting" || name == "default")
+          (*presets)[name].failMessage("'" + name + "' is a reserved preset name");
+        m.odometry_presets[name] = parseOdometry((*presets)[name]);
+      }
   }
+  m.odometry_presets.emplace("default", m.odometry);
   return m;
 }
 

@@ -2,6 +2,7 @@
 // parameters the simulator needs to play the robot.
 #pragma once
 
+#include <map>
 #include <string>
 
 #include "core/robot/robot_interface.h"
@@ -12,7 +13,8 @@ namespace coopmap {
 struct RobotModel {
   RobotDescription description;
   sim::DriveConfig drive;
-  sim::OdometryConfig odometry;
+  sim::OdometryConfig odometry;                                 // the default preset
+  std::map<std::string, sim::OdometryConfig> odometry_presets;  // "default" and named ones
   sim::CameraNoiseConfig cameras;
 };
 

@@ -80,8 +80,8 @@ class TrinocularMatcher {
   void computeTexture(const cv::Mat& reference);
   // Whether reference pixel (x, y) (its row given) matches its partner pixels at integer
   // disparity d: mean absolute difference at most `max` (pairs not seeing it are skipped).
-  bool centreMatches(const uint8_t* ref_row, const cv::Mat* const partners[2], int x, int y,
-                     int d, int max) const {
+  bool centreMatches(const uint8_t* ref_row, const cv::Mat* const partners[2], int x, int y, int d,
+                     int max) const {
     int sum = 0, n = 0;
     for (int p = 0; p < 2; ++p) {
       const Pair& pair = pairs_[p];

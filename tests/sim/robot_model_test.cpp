@@ -60,3 +60,19 @@ TEST(RobotModelTest, BadValuesAreNamed) {
 
 }  // namespace
 }  // namespace coopmap
+
+namespace coopmap {
+namespace {
+
+TEST(RobotModelTest, OdometryPresetsByName) {
+  const RobotModel m = loadRobotModel(kB14);
+  ASSERT_TRUE(m.odometry_presets.count("default"));
+  ASSERT_TRUE(m.odometry_presets.count("utias_robot1"));
+  EXPECT_NEAR(m.odometry_presets.at("utias_robot1").heading_drift, 0.072574, 1e-9);
+  EXPECT_EQ(m.odometry_presets.at("default").heading_drift, m.odometry.heading_drift);
+  const std::string e = errorOf("    utias_robot2:", "    perfect:");
+  EXPECT_NE(e.find("'perfect' is a reserved preset name"), std::string::npos) << e;
+}
+
+}  // namespace
+}  // namespace coopmap
