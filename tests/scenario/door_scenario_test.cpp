@@ -3,29 +3,21 @@
 // robot driving at the closed door is stopped by it.
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 
 #include <gtest/gtest.h>
 
 #include "apps/run_world.h"
 #include "sim/world/ground_truth.h"
 #include "sim/world/world.h"
+#include "tests/support/test_world.h"
 
 namespace coopmap {
 namespace {
 
 // A wall with a doorway at x = 2 in front of the robot, a back wall at x = 3.8.
 std::string writeWorld(const std::string& route) {
-  const std::string path =
-      (std::filesystem::temp_directory_path() / "coopmap_door_world.yaml").string();
-  std::ofstream(path) << R"(
-name: door
-textures:
-  carpet: {type: noise, tile: 2.0, feature: 0.03, mean: 105, contrast: 30}
-  poster: {type: posters, tile: 2.5, feature: 0.04, mean: 128, contrast: 70}
-  wood: {type: noise, tile: 1.0, feature: 0.02, mean: 140, contrast: 55}
-floor: {min: [-1, -3], max: [4, 3], texture: carpet}
+  return test_support::writeTestWorld("door",
+                                      R"(floor: {min: [-1, -3], max: [4, 3], texture: carpet}
 walls:
   - {from: [2, -3], to: [2, -0.6], thickness: 0.1, height: 2.5, texture: poster}
   - {from: [2, 0.6], to: [2, 3], thickness: 0.1, height: 2.5, texture: poster}
@@ -38,13 +30,8 @@ home_base:
     - {position: [0, 2.5], heading_deg: 0}
     - {position: [1, 2.5], heading_deg: 0}
   texture: poster
-robots:
-  - name: r
-    model: )" + std::string(COOPMAP_SOURCE_DIR) +
-                             R"(/robots/b14/b14.yaml
-    start: {position: [0, 0], heading_deg: 0}
-)" + route;
-  return path;
+)",
+                                      route);
 }
 
 // Median range of the central columns of a radial map (m), or -1 without returns.
@@ -83,7 +70,7 @@ TEST(DoorScenarioTest, DoorOpensOnScheduleInImagesAndGroundTruth) {
 
 TEST(DoorScenarioTest, ClosedDoorStopsTheRobot) {
   RunOptions o;
-  o.world_file = writeWorld("    route: [[3.0, 0.0]]\n");
+  o.world_file = writeWorld("[3.0, 0.0]");
   o.duration = 5.0;  // the door opens at 6 s
   o.odometry = "perfect";
   const RunResult r = runWorld(o);

@@ -1,26 +1,19 @@
 // Scenario: a person walks across in front of a robot that stands still. The person must
 // show in the robot's radial maps while crossing, and leave no obstacle in the map once
 // the cells are seen free again; a person walking into a robot is a counted contact.
-#include <filesystem>
-#include <fstream>
-
 #include <gtest/gtest.h>
 
 #include "apps/run_world.h"
 #include "core/localization/home_base.h"
+#include "tests/support/test_world.h"
 
 namespace coopmap {
 namespace {
 
+// A wall 3.8 m ahead of the robot; `people` is the world's people list.
 std::string writeWorld(const std::string& people) {
-  const std::string path =
-      (std::filesystem::temp_directory_path() / "coopmap_people_world.yaml").string();
-  std::ofstream(path) << R"(
-name: crossing
-textures:
-  carpet: {type: noise, tile: 2.0, feature: 0.03, mean: 105, contrast: 30}
-  poster: {type: posters, tile: 2.5, feature: 0.04, mean: 128, contrast: 70}
-floor: {min: [-1, -4], max: [4, 4], texture: carpet}
+  return test_support::writeTestWorld("crossing",
+                                      R"(floor: {min: [-1, -4], max: [4, 4], texture: carpet}
 walls:
   - {from: [3.8, -4], to: [3.8, 4], thickness: 0.1, height: 2.5, texture: poster}
 home_base:
@@ -28,13 +21,7 @@ home_base:
     - {position: [0, 3.5], heading_deg: 0}
     - {position: [1, 3.5], heading_deg: 0}
   texture: poster
-robots:
-  - name: r
-    model: )" + std::string(COOPMAP_SOURCE_DIR) +
-                             R"(/robots/b14/b14.yaml
-    start: {position: [0, 0], heading_deg: 0}
-)" + people;
-  return path;
+)" + people);
 }
 
 TEST(PeopleScenarioTest, PersonCrossingShowsThenLeavesNoObstacle) {

@@ -2,13 +2,12 @@
 // distance driven and the angle turned as the B-14's odometry preset says (mean over seeds
 // within the preset's random-walk spread), and three laps must drift about three times one.
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 
 #include <gtest/gtest.h>
 
 #include "apps/run_world.h"
 #include "robots/robot_model.h"
+#include "tests/support/test_world.h"
 
 namespace coopmap {
 namespace {
@@ -16,27 +15,16 @@ namespace {
 std::string squareWorld(int laps) {
   std::string route;
   for (int i = 0; i < laps; ++i) route += "[2.0, 0.0], [2.0, 2.0], [0.0, 2.0], [0.0, 0.0], ";
-  const std::string path = (std::filesystem::temp_directory_path() /
-                            ("coopmap_square_" + std::to_string(laps) + ".yaml"))
-                               .string();
-  std::ofstream(path) << R"(
-name: square
-textures:
-  carpet: {type: noise, tile: 2.0, feature: 0.03, mean: 105, contrast: 30}
-floor: {min: [-2, -2], max: [4, 4], texture: carpet}
+  return test_support::writeTestWorld("square_" + std::to_string(laps),
+                                      R"(floor: {min: [-2, -2], max: [4, 4], texture: carpet}
 walls: []
 home_base:
   corners:
     - {position: [3.5, 3.0], heading_deg: 0}
     - {position: [3.5, 3.8], heading_deg: 0}
   texture: carpet
-robots:
-  - name: r
-    model: )" + std::string(COOPMAP_SOURCE_DIR) +
-                             R"(/robots/b14/b14.yaml
-    start: {position: [0, 0], heading_deg: 0}
-    route: [)" + route + "]\n";
-  return path;
+)",
+                                      route);
 }
 
 struct Drift {

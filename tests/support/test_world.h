@@ -1,0 +1,32 @@
+// Small worlds for scenario tests: the textures they share, one B-14 at the origin facing
+// +x, written to a temporary file.
+#pragma once
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace coopmap::test_support {
+
+// Writes a world named `name` with the common textures (carpet, poster, wood), the given
+// YAML body (floor, walls, doors, home_base, people ...) and one robot "r" at the origin
+// with the given route (YAML flow list, may be empty). Returns the file's path.
+inline std::string writeTestWorld(const std::string& name, const std::string& body,
+                                  const std::string& route = "") {
+  const std::string path =
+      (std::filesystem::temp_directory_path() / ("coopmap_test_" + name + ".yaml")).string();
+  std::ofstream(path) << "name: " << name << R"(
+textures:
+  carpet: {type: noise, tile: 2.0, feature: 0.03, mean: 105, contrast: 30}
+  poster: {type: posters, tile: 2.5, feature: 0.04, mean: 128, contrast: 70}
+  wood: {type: noise, tile: 1.0, feature: 0.02, mean: 140, contrast: 55}
+)" << body << R"(
+robots:
+  - name: r
+    model: )" << COOPMAP_SOURCE_DIR
+                      << "/robots/b14/b14.yaml\n    start: {position: [0, 0], heading_deg: 0}\n"
+                      << (route.empty() ? "" : "    route: [" + route + "]\n");
+  return path;
+}
+
+}  // namespace coopmap::test_support
