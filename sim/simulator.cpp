@@ -47,6 +47,8 @@ void Simulator::advance(double dt) {
     size_t door = 0;
     for (const DoorSpec& d : world_.doors)
       if (d.scheduled()) physics_->moveKinematic(doors_[door++], d.center, !d.openAt(t_next));
+    for (RobotState& r : robots_)
+      if (r.segment.kind != MotionCommand::Kind::kVelocity) driveSegment(r);
     physics_->step();
     ++steps_;
     for (RobotState& r : robots_)
@@ -100,7 +102,49 @@ TrinocularFrame Simulator::capture(int robot, cv::Mat* truth_depth) {
 }
 
 void Simulator::command(int robot, const MotionCommand& cmd) {
-  physics_->command(robots_.at(robot).physics_index, cmd);
+  RobotState& r = robots_.at(robot);
+  r.segment = cmd;
+  if (cmd.kind == MotionCommand::Kind::kVelocity) {
+    physics_->command(r.physics_index, cmd);
+    return;
+  }
+  r.segment_start = r.odometry->pose();
+  r.segment_done = 0.0;
+  r.last_theta = r.segment_start.theta;
+}
+
+// The base's own segment execution: progress by the encoders (odometry), a speed that
+// decelerates to stop at the goal (v = sqrt(2 a d)), straight runs holding the encoder
+// heading; done within 2 mrad or 2 mm.
+void Simulator::driveSegment(RobotState& r) {
+  const RobotDescription& d = r.config.description;
+  const Pose2 now = r.odometry->pose();
+  MotionCommand v;
+  if (r.segment.kind == MotionCommand::Kind::kTurn) {
+    r.segment_done += wrapAngle(now.theta - r.last_theta);
+    r.last_theta = now.theta;
+    const double left = r.segment.amount - r.segment_done;
+    if (std::abs(left) < 0.002) {
+      r.segment = MotionCommand::stop();
+    } else {
+      const double w =
+          std::min(d.max_angular_speed, std::sqrt(2.0 * d.max_angular_accel * std::abs(left)));
+      v.angular = std::copysign(std::max(0.05, 0.8 * w), left);
+    }
+  } else {
+    const double c = std::cos(r.segment_start.theta), s = std::sin(r.segment_start.theta);
+    r.segment_done = c * (now.x - r.segment_start.x) + s * (now.y - r.segment_start.y);
+    const double left = r.segment.amount - r.segment_done;
+    if (std::abs(left) < 0.002) {
+      r.segment = MotionCommand::stop();
+    } else {
+      const double speed =
+          std::min(d.max_linear_speed, std::sqrt(2.0 * d.max_linear_accel * std::abs(left)));
+      v.linear = std::copysign(std::max(0.02, 0.8 * speed), left);
+      v.angular = 2.0 * wrapAngle(r.segment_start.theta - now.theta);
+    }
+  }
+  physics_->command(r.physics_index, v);
 }
 
 Pose2 Simulator::truePose(int robot) const {
@@ -110,8 +154,10 @@ Pose2 Simulator::truePose(int robot) const {
 Pose2 Simulator::odometry(int robot) const { return robots_.at(robot).odometry->pose(); }
 
 RobotStatus Simulator::status(int robot) const {
-  const int i = robots_.at(robot).physics_index;
-  return {physics_->inContact(i), physics_->contactEvents(i)};
+  const RobotState& r = robots_.at(robot);
+  const int i = r.physics_index;
+  return {physics_->inContact(i), physics_->contactEvents(i),
+          r.segment.kind != MotionCommand::Kind::kVelocity};
 }
 
 const RobotDescription& Simulator::description(int robot) const {

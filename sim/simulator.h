@@ -64,7 +64,13 @@ class Simulator {
     int physics_index = 0;
     std::unique_ptr<OdometryModel> odometry;
     std::vector<CameraModel> cameras;  // reference, horizontal, vertical
+    // The segment under way (kind kVelocity: none), where it started, how far it got.
+    MotionCommand segment;
+    Pose2 segment_start;
+    double segment_done = 0.0;  // rad turned or m driven, by the encoders
+    double last_theta = 0.0;
   };
+  void driveSegment(RobotState& r);
   World world_;
   uint64_t seed_;
   std::unique_ptr<PhysicsWorld> physics_;

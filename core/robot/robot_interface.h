@@ -2,6 +2,7 @@
 // and the core (agent, mapping) sees nothing else of them.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 
@@ -34,17 +35,26 @@ struct TrinocularFrame {
   cv::Mat vertical;    // CV_8UC1, partner offset by rig.vertical_offset
 };
 
-// A motion command: a velocity (v, omega) held until the next command.
+// A motion command, held until the next: a velocity (v, omega), or a segment the base
+// executes by its own encoders, the way the paper's robots moved: turn in place by an
+// angle, or drive straight a distance; then it stops.
 struct MotionCommand {
-  double linear = 0.0;   // m/s, along robot +x
-  double angular = 0.0;  // rad/s, CCW
+  enum class Kind : uint8_t { kVelocity, kTurn, kStraight };
+  double linear = 0.0;   // m/s, along robot +x (kVelocity)
+  double angular = 0.0;  // rad/s, CCW (kVelocity)
+  Kind kind = Kind::kVelocity;
+  double amount = 0.0;  // kTurn: rad, CCW positive; kStraight: m, negative backwards
+
   static MotionCommand stop() { return {}; }
+  static MotionCommand turn(double rad) { return {0.0, 0.0, Kind::kTurn, rad}; }
+  static MotionCommand straight(double m) { return {0.0, 0.0, Kind::kStraight, m}; }
 };
 
 // What the base reports besides odometry.
 struct RobotStatus {
-  bool bumped = false;     // touching an obstacle now
-  int contact_events = 0;  // count of distinct contacts since start
+  bool bumped = false;          // touching an obstacle now
+  int contact_events = 0;       // count of distinct contacts since start
+  bool segment_active = false;  // a turn or straight segment is under way
 };
 
 class RobotInterface {
