@@ -52,7 +52,7 @@ void Simulator::advance(double dt) {
     physics_->step();
     ++steps_;
     for (RobotState& r : robots_)
-      r.odometry->integrate(physics_->bodyVelocity(r.physics_index),
+      r.odometry->integrate(physics_->wheelVelocity(r.physics_index),
                             physics_->truePose(r.physics_index), h);
   }
 }

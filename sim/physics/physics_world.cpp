@@ -14,8 +14,9 @@ struct Robot {
   std::unique_ptr<btCollisionShape> shape;
   std::unique_ptr<btDefaultMotionState> motion;
   std::unique_ptr<btRigidBody> body;
-  MotionCommand target;    // commanded
-  MotionCommand setpoint;  // after the base's acceleration profile
+  MotionCommand target;                            // commanded
+  MotionCommand setpoint;                          // after the base's acceleration profile
+  bool slip_linear = false, slip_angular = false;  // traction saturated this step
   bool contact = false;
   int contact_events = 0;
 };
@@ -30,6 +31,7 @@ struct PhysicsWorld::Impl {
   std::vector<std::unique_ptr<btRigidBody>> statics;
   btRigidBody* floor = nullptr;
   std::vector<std::unique_ptr<Robot>> robots;
+  std::vector<SurfaceSpec> surfaces;
   std::vector<btRigidBody*> kinematic;  // owned by statics
   std::vector<double> kinematic_z;      // their centres' heights when present
 
@@ -56,6 +58,7 @@ PhysicsWorld::PhysicsWorld(const World& world, double step)
   if (!(step > 0.0 && step < 0.1))
     throw std::invalid_argument("physics step must be in (0, 0.1) s");
   Impl& im = *impl_;
+  im.surfaces = world.surfaces;
   im.world.setGravity(btVector3(0, 0, -9.81));
   btTransform floor_pose;
   floor_pose.setIdentity();
@@ -165,19 +168,27 @@ void PhysicsWorld::step() {
 
     // Wheel-floor traction: a servo force towards the setpoint, limited by mu * m * g;
     // what it cannot deliver, the wheels slip.
-    const BodyVelocity v = bodyVelocity(static_cast<int>(&rp - &im.robots[0]));
+    const int index = static_cast<int>(&rp - &im.robots[0]);
+    const BodyVelocity v = bodyVelocity(index);
+    const Pose2 at = truePose(index);
+    double mu = r.drive.traction_mu;  // the floor patch under the robot, if any
+    for (const SurfaceSpec& s : im.surfaces)
+      if (s.contains(at.translation())) mu = s.traction_mu;
     const double m = r.drive.mass, tau = r.drive.velocity_time_constant;
-    const double f_max = r.drive.traction_mu * m * g;
+    const double f_max = mu * m * g;
     double fx = m * (r.setpoint.linear - v.forward) / tau;
     double fy = m * (0.0 - v.lateral) / tau;  // wheels resist sideways sliding
     const double f = std::hypot(fx, fy);
-    if (f > f_max) {
+    r.slip_linear = f > f_max;
+    if (r.slip_linear) {
       fx *= f_max / f;
       fy *= f_max / f;
     }
     const double izz = 0.5 * m * d.body_radius * d.body_radius;
     const double t_max = f_max * d.body_radius;
-    const double tz = std::clamp(izz * (r.setpoint.angular - v.yaw_rate) / tau, -t_max, t_max);
+    const double t_want = izz * (r.setpoint.angular - v.yaw_rate) / tau;
+    r.slip_angular = std::abs(t_want) > t_max;
+    const double tz = std::clamp(t_want, -t_max, t_max);
     const btTransform& tf = r.body->getWorldTransform();
     const btVector3 force = tf.getBasis() * btVector3(fx, fy, 0);
     r.body->applyCentralForce(force);
@@ -221,6 +232,14 @@ BodyVelocity PhysicsWorld::bodyVelocity(int robot) const {
   const btVector3 v = body.getLinearVelocity();
   const double c = std::cos(p.theta), s = std::sin(p.theta);
   return {c * v.x() + s * v.y(), -s * v.x() + c * v.y(), body.getAngularVelocity().z()};
+}
+
+BodyVelocity PhysicsWorld::wheelVelocity(int robot) const {
+  const Robot& r = *impl_->robots.at(robot);
+  BodyVelocity w = bodyVelocity(robot);
+  if (r.slip_linear) w.forward = r.setpoint.linear;
+  if (r.slip_angular) w.yaw_rate = r.setpoint.angular;
+  return w;
 }
 
 bool PhysicsWorld::inContact(int robot) const { return impl_->robots.at(robot)->contact; }

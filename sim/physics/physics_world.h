@@ -51,8 +51,11 @@ class PhysicsWorld {
 
   Pose2 truePose(int robot) const;             // X_WR (m, rad)
   BodyVelocity bodyVelocity(int robot) const;  // in the robot frame
-  bool inContact(int robot) const;             // touching a solid (not the floor) now
-  int contactEvents(int robot) const;          // new contacts since start
+  // What the wheels turn at (robot frame): the body's motion while they grip, the drive's
+  // setpoint while they slip (traction saturated). Encoders measure this.
+  BodyVelocity wheelVelocity(int robot) const;
+  bool inContact(int robot) const;     // touching a solid (not the floor) now
+  int contactEvents(int robot) const;  // new contacts since start
   double stepSize() const { return step_; }
   double time() const { return time_; }
   int robotCount() const;

@@ -85,6 +85,17 @@ struct PersonSpec {
   Eigen::Vector2d positionAt(double t) const;
 };
 
+// A floor patch whose wheel-floor friction replaces the robot's own (tile, a wet or dusty
+// patch): less friction, more slip.
+struct SurfaceSpec {
+  std::string name;
+  Eigen::Vector2d min{0.0, 0.0}, max{1.0, 1.0};  // m, axis-aligned rectangle
+  double traction_mu = 0.8;
+  bool contains(const Eigen::Vector2d& p) const {
+    return p.x() >= min.x() && p.y() >= min.y() && p.x() <= max.x() && p.y() <= max.y();
+  }
+};
+
 struct RobotSpec {
   std::string name;
   std::string model_file;  // resolved path of the robot model YAML
@@ -105,6 +116,7 @@ struct World {
   HomeBaseSpec home_base;
   std::vector<RobotSpec> robots;
   std::vector<PersonSpec> people;
+  std::vector<SurfaceSpec> surfaces;
   double map_resolution = 0.05;  // m per cell for maps and ground truth
   double physics_rate = 200.0;   // Hz
   double sensing_rate = 3.0;     // Hz (the paper's rate)

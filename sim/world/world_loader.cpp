@@ -162,7 +162,7 @@ Eigen::Vector2d PersonSpec::positionAt(double t) const {
 World parseWorld(const std::string& text, const std::string& file) {
   const YamlField root = YamlField::loadString(text, file);
   root.allowOnly({"name", "seed", "floor", "simulation", "textures", "walls", "boxes", "doors",
-                  "home_base", "robots", "people"});
+                  "home_base", "robots", "people", "surfaces"});
   World w;
   w.file = file;
   w.name = root["name"].asString();
@@ -263,6 +263,19 @@ World parseWorld(const std::string& text, const std::string& file) {
       optionalDouble(hb, "height", w.home_base.height, 0.3, 3.0, "a height in [0.3, 3] m");
   w.home_base.texture = textureRef(hb, w, "");
 
+  if (const auto surfaces = root.get("surfaces")) {
+    for (const YamlField& f : surfaces->elements()) {
+      f.allowOnly({"name", "min", "max", "traction_mu"});
+      SurfaceSpec sp;
+      sp.name = f["name"].asString();
+      sp.min = f["min"].asVector2();
+      sp.max = f["max"].asVector2();
+      if (!(sp.max.x() > sp.min.x() && sp.max.y() > sp.min.y()))
+        f["max"].fail("a corner above and to the right of 'min'");
+      sp.traction_mu = f["traction_mu"].asDouble(0.01, 3.0, "a friction coefficient in [0.01, 3]");
+      w.surfaces.push_back(sp);
+    }
+  }
   if (const auto people = root.get("people")) {
     for (const YamlField& f : people->elements()) {
       f.allowOnly({"name", "radius", "height", "speed", "start_time", "loop", "path"});

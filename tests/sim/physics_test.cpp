@@ -4,6 +4,7 @@
 #include "sim/physics/physics_world.h"
 
 #include <cmath>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -115,6 +116,59 @@ TEST(OdometryTest, NoiseIsSeeded) {
   };
   EXPECT_EQ(run(3).x, run(3).x);
   EXPECT_NE(run(3).x, run(4).x);
+}
+
+}  // namespace
+}  // namespace coopmap::sim
+
+namespace coopmap::sim {
+namespace {
+
+// Error-free encoder odometry after 2 s of full acceleration from rest, and the truth.
+std::pair<double, double> launch(double patch_mu) {
+  World w = openWorld(false);
+  if (patch_mu > 0) w.surfaces.push_back({"wet", {-1, -1}, {5, 1}, patch_mu});
+  PhysicsWorld p(w, 1.0 / 200.0);
+  const int r = p.addRobot(RobotDescription{}, {}, DriveConfig{});
+  OdometryModel odo(OdometryConfig{}, {}, 1);
+  p.command(r, {0.9, 0.0});
+  for (int i = 0; i < 400; ++i) {
+    p.step();
+    odo.integrate(p.wheelVelocity(r), p.truePose(r), p.stepSize());
+  }
+  return {odo.pose().x, p.truePose(r).x};
+}
+
+TEST(SurfaceTest, WheelsSlipOnALowFrictionPatchAndOdometryOvercounts) {
+  const auto [odo_dry, true_dry] = launch(0.0);
+  EXPECT_NEAR(odo_dry, true_dry, 0.005);  // grip: the encoders see the body's motion
+  const auto [odo_wet, true_wet] = launch(0.05);
+  // mu 0.05 allows 0.49 m/s^2 against the base's 1 m/s^2 profile: the body lags and the
+  // spinning wheels count distance it never made.
+  EXPECT_LT(true_wet, true_dry - 0.2);
+  EXPECT_GT(odo_wet, true_wet + 0.2);
+}
+
+TEST(SurfaceTest, SurfacesLoadFromTheWorldFile) {
+  const World w = parseWorld(R"(name: s
+textures: {carpet: {type: noise}}
+floor: {min: [0, 0], max: [4, 4], texture: carpet}
+walls: []
+surfaces:
+  - {name: wet, min: [1, 1], max: [2, 2], traction_mu: 0.1}
+home_base:
+  corners: [{position: [3, 3], heading_deg: 0}, {position: [3, 3.8], heading_deg: 0}]
+  texture: carpet
+robots:
+  - name: r
+    model: )" + std::string(COOPMAP_SOURCE_DIR) +
+                                 R"(/robots/b14/b14.yaml
+    start: {position: [0.5, 0.5]}
+)",
+                             "w.yaml");
+  ASSERT_EQ(w.surfaces.size(), 1u);
+  EXPECT_TRUE(w.surfaces[0].contains({1.5, 1.5}));
+  EXPECT_DOUBLE_EQ(w.surfaces[0].traction_mu, 0.1);
 }
 
 }  // namespace
