@@ -160,6 +160,7 @@ CornerDetector::CornerDetector(const GridU8& classes, const CornerConfig& config
     d = e.clone();
   dilated_ = GridU8(limits_, 0);
   std::copy(d.datastart, d.dataend, dilated_.cells.begin());
+  candidates_ = findCandidates();
 }
 
 double CornerDetector::distance(double cx, double cy) const {
@@ -269,7 +270,7 @@ Corner CornerDetector::fit(const Eigen::Vector2d& position, double heading) cons
   return c;
 }
 
-std::vector<CornerDetector::Guess> CornerDetector::candidates() const {
+std::vector<CornerDetector::Guess> CornerDetector::findCandidates() const {
   std::vector<Guess> out;
   GridU8 taken(limits_, 0);  // bit i: a candidate of orientation i is near
   const int L = config_.line_cells, W = limits_.width, H = limits_.height;
@@ -335,13 +336,13 @@ CornerSearch CornerDetector::search(const std::vector<Guess>& guesses) const {
   return s;
 }
 
-CornerSearch CornerDetector::findAll() const { return search(candidates()); }
+CornerSearch CornerDetector::findAll() const { return search(candidates_); }
 
 CornerSearch CornerDetector::findNear(const Eigen::Vector2d& predicted, double radius,
                                       std::optional<double> predicted_heading) const {
   std::vector<Guess> near;
   const double res = limits_.resolution;
-  for (const Guess& g : candidates())
+  for (const Guess& g : candidates_)
     if ((limits_.origin + g.cell * res - predicted).norm() <= radius) near.push_back(g);
   // The prediction itself seeds a fit when its heading is known; with no candidate near
   // (edges broken by missing cells), it seeds fits at the eight candidate orientations.

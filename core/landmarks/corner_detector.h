@@ -92,7 +92,7 @@ class CornerDetector {
     Eigen::Vector2d cell;  // cell coordinates (cells from the origin)
     double degrees;
   };
-  std::vector<Guess> candidates() const;
+  std::vector<Guess> findCandidates() const;  // from the orientation map, once
   CornerSearch search(const std::vector<Guess>& guesses) const;
   double distance(double cx, double cy) const;  // signed, cells, bilinear, at cell coordinates
 
@@ -100,6 +100,7 @@ class CornerDetector {
   MapLimits limits_;
   GridU8 edges_;
   GridU8 dilated_;
+  std::vector<Guess> candidates_;  // every corner candidate of the grid
   cv::Mat field_;  // CV_32F signed distance to the nearest edge (cells; < 0 in occupied)
 };
 
