@@ -7,7 +7,7 @@ PACKAGES=(
   build-essential cmake pkg-config ccache clang-format
   libbullet-dev libosmesa6-dev libeigen3-dev libopencv-dev libyaml-cpp-dev
   libompl-dev libboost-serialization-dev libboost-filesystem-dev libboost-system-dev
-  libgtest-dev libbenchmark-dev libcli11-dev
+  libgtest-dev libbenchmark-dev libcli11-dev libceres-dev zlib1g-dev
 )
 
 install_packages() {

@@ -14,10 +14,17 @@ namespace coopmap {
 
 CornersResult runCorners(const CornersOptions& o) {
   const RosMap map = loadRosMap(o.map_yaml);
-  const MapLimits& lim = map.classes.limits;
+  CornersResult result = findCorners(map.classes, o.map_yaml, o);
+  if (!o.out_dir.empty()) writeCorners(result, o.out_dir);
+  return result;
+}
+
+CornersResult findCorners(const GridU8& classes, const std::string& source,
+                          const CornersOptions& o) {
+  const MapLimits& lim = classes.limits;
   CornerConfig config;
   config.arm_cells = std::max(2.0, o.arm_length / lim.resolution);
-  const CornerDetector detector(map.classes, config);
+  const CornerDetector detector(classes, config);
   CornersResult result;
   result.search = detector.findAll();
   for (uint8_t e : detector.edges().cells) result.edge_cells += e;
@@ -26,7 +33,7 @@ CornersResult runCorners(const CornersOptions& o) {
   cv::Mat img(lim.height * scale, lim.width * scale, CV_8UC3);
   for (int iy = 0; iy < lim.height; ++iy)
     for (int ix = 0; ix < lim.width; ++ix) {
-      const auto c = static_cast<CellClass>(map.classes.at(ix, iy));
+      const auto c = static_cast<CellClass>(classes.at(ix, iy));
       cv::Vec3b colour = c == CellClass::kFree       ? cv::Vec3b(255, 255, 255)
                          : c == CellClass::kOccupied ? cv::Vec3b(60, 60, 60)
                          : c == CellClass::kUnknown  ? cv::Vec3b(170, 170, 170)
@@ -42,7 +49,7 @@ CornersResult runCorners(const CornersOptions& o) {
   };
   JsonWriter j;
   j.beginObject();
-  j.value("map", o.map_yaml).value("resolution", lim.resolution);
+  j.value("map", source).value("resolution", lim.resolution);
   j.value("arm_length_m", o.arm_length).value("candidates", result.search.candidates);
   j.value("status", toString(result.search.status));
   j.beginArray("corners");
@@ -62,14 +69,17 @@ CornersResult runCorners(const CornersOptions& o) {
   }
   j.endArray();
   j.endObject();
-  if (!o.out_dir.empty()) {
-    std::filesystem::create_directories(o.out_dir);
-    std::vector<unsigned char> buf;
-    if (!cv::imencode(".png", img, buf)) throw std::runtime_error("PNG encoding failed");
-    writeFileAtomic(o.out_dir + "/corners.png", std::string(buf.begin(), buf.end()));
-    writeFileAtomic(o.out_dir + "/corners.json", j.str());
-  }
+  std::vector<unsigned char> buf;
+  if (!cv::imencode(".png", img, buf)) throw std::runtime_error("PNG encoding failed");
+  result.png.assign(buf.begin(), buf.end());
+  result.json = j.str();
   return result;
+}
+
+void writeCorners(const CornersResult& result, const std::string& out_dir) {
+  std::filesystem::create_directories(out_dir);
+  writeFileAtomic(out_dir + "/corners.png", result.png);
+  writeFileAtomic(out_dir + "/corners.json", result.json);
 }
 
 }  // namespace coopmap

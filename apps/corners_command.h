@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/landmarks/corner_detector.h"
+#include "core/mapping/grid.h"
 
 namespace coopmap {
 
@@ -18,9 +19,21 @@ struct CornersOptions {
 struct CornersResult {
   CornerSearch search;
   int edge_cells = 0;
+  std::string png;   // corners.png: edges and fitted corners over the map
+  std::string json;  // corners.json
 };
 
 // Throws ConfigError for a bad map file, std::runtime_error when outputs cannot be written.
 CornersResult runCorners(const CornersOptions& options);
+
+// Finds the corners of a classified grid (CellClass per cell) and renders corners.png and
+// corners.json (`source` names the map in the JSON); writes nothing. options.map_yaml and
+// options.out_dir are not used.
+CornersResult findCorners(const GridU8& classes, const std::string& source,
+                          const CornersOptions& options);
+
+// Writes corners.png and corners.json of a result to a folder (created if missing), each
+// atomically.
+void writeCorners(const CornersResult& result, const std::string& out_dir);
 
 }  // namespace coopmap

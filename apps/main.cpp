@@ -2,15 +2,19 @@
 #include <cstdio>
 #include <exception>
 #include <string>
+#include <vector>
 
 #include <CLI/App.hpp>
 #include <CLI/Config.hpp>
 #include <CLI/Formatter.hpp>
 
+#include "apps/carmen_command.h"
 #include "apps/corners_command.h"
+#include "apps/drift_command.h"
 #include "apps/odometry_fit_command.h"
 #include "apps/run_world.h"
 #include "apps/stereo_eval_command.h"
+#include "apps/traverse_command.h"
 #include "core/io/json_writer.h"
 #include "core/io/yaml_reader.h"
 
@@ -135,6 +139,33 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
 
+  coopmap::CarmenOptions carmen;
+  auto* cmd_carmen = app.add_subcommand(
+      "carmen",
+      "Map a laser log in CARMEN format (ODOM, FLASER/RLASER, RAWLASER1-4, ROBOTLASER1-2 "
+      "lines; the classic public robot data sets) through the robot interface: writes the "
+      "occupancy grid (map.pgm/.yaml/.png), its corners (corners.json/.png) and the "
+      "trajectory (trajectory_odometry.tum; trajectory_groundtruth.tum with TRUEPOS) to --out.");
+  cmd_carmen->add_option("log", carmen.log, "CARMEN log file (uncompressed)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd_carmen->add_option("--out", carmen.out_dir, "Output folder")->required();
+  cmd_carmen->add_option("--resolution", carmen.resolution, "Map resolution (m per cell)")
+      ->capture_default_str();
+  cmd_carmen
+      ->add_option("--max-range", carmen.max_range,
+                   "Usable laser range (m): farther returns only clear free space up to it; 0: "
+                   "the laser's maximum (FLASER: 80 m)")
+      ->capture_default_str();
+  cmd_carmen
+      ->add_option("--laser", carmen.laser,
+                   "Laser to map with: 1 front (FLASER, RAWLASER1, ROBOTLASER1), 2 rear, 3, 4; "
+                   "0: the lowest in the log")
+      ->capture_default_str();
+  cmd_carmen->add_option("--arm-length", carmen.arm_length, "Arm length of the corner model (m)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+
   coopmap::OdometryFitOptions fit;
   fit.robot_model = "robots/b14/b14.yaml";
   auto* cmd_fit = app.add_subcommand(
@@ -156,9 +187,84 @@ int main(int argc, char** argv) {
       ->check(CLI::ExistingFile);
   cmd_fit->add_option("--seed", fit.seed, "Seed of the simulated odometry")->capture_default_str();
 
+  coopmap::DriftBenchOptions drift;
+  std::vector<std::string> drift_models;
+  auto* cmd_bench = app.add_subcommand("bench", "Scenario benchmarks");
+  cmd_bench->require_subcommand(1);
+  auto* cmd_drift = cmd_bench->add_subcommand(
+      "drift",
+      "The drift-error benchmark (the paper's long traverse): for each seed a robot drives "
+      "the world's loop on drifting odometry, localizes at the home base, and each "
+      "correction model corrects its traverse and rebuilds its map. Writes drift.csv (a row "
+      "per seed and model), drift.md (the summary table beside the paper's figures), and "
+      "seeds/<seed>/ with TUM trajectories (ground truth, odometry, each model) and maps.png "
+      "(the maps side by side) to --out.");
+  cmd_drift->add_option("--world", drift.world_file, "World file with a home base and a loop")
+      ->capture_default_str()
+      ->check(CLI::ExistingFile);
+  cmd_drift->add_option("--out", drift.out_dir, "Output folder")->required();
+  cmd_drift->add_option("--seeds", drift.seeds, "Number of seeds")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  cmd_drift->add_option("--first-seed", drift.first_seed, "First seed")->capture_default_str();
+  cmd_drift
+      ->add_option("--odometry", drift.odometry,
+                   "Odometry preset of the robot file ('drifting' is its default preset)")
+      ->capture_default_str();
+  cmd_drift->add_option("--models", drift_models,
+                        "Correction models: none, uniform, turns-and-straights, heading-drift, "
+                        "pose-graph (default: all)");
+  bool drift_no_noise = false;
+  cmd_drift->add_flag("--no-camera-noise", drift_no_noise, "Noise-free cameras");
+  bool drift_quiet = false;
+  cmd_drift->add_flag("--quiet", drift_quiet, "No line per seed on stderr");
+
+  coopmap::TraverseOptions trav;
+  auto* cmd_traverse = app.add_subcommand(
+      "traverse",
+      "Rebuild a map from a traverse log (traverse_<robot>.traverse of a run) at its odometry "
+      "poses: map.{pgm,yaml,png} in --out; prints what the log holds.");
+  cmd_traverse->add_option("log", trav.log_file, "Traverse log")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd_traverse->add_option("--out", trav.out_dir, "Output folder")->required();
+  cmd_traverse->add_option("--first", trav.first, "First entry used")->capture_default_str();
+  cmd_traverse->add_option("--last", trav.last, "Last entry used (-1: the end)")
+      ->capture_default_str();
+  cmd_traverse->add_option("--resolution", trav.resolution, "Map resolution (m)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+
   CLI11_PARSE(app, argc, argv);
 
   try {
+    if (cmd_traverse->parsed()) {
+      const coopmap::TraverseSummary t = coopmap::runTraverse(trav);
+      std::printf(
+          "%s: %zu entries (%zu used: %.1f s, %.1f m by odometry, %zu turning, %zu straight); "
+          "%s/map.{pgm,yaml,png} written\n",
+          t.robot.c_str(), t.entries, t.used, t.duration_s, t.path_length_m, t.turns, t.straights,
+          trav.out_dir.c_str());
+    }
+    if (cmd_drift->parsed()) {
+      if (!drift_models.empty()) {
+        drift.models.clear();
+        for (const std::string& m : drift_models) {
+          const auto parsed = coopmap::parseCorrectionModel(m);
+          if (!parsed)
+            throw std::invalid_argument(
+                "--models: expected none, uniform, turns-and-straights, "
+                "heading-drift or pose-graph, got '" +
+                m + "'");
+          drift.models.push_back(*parsed);
+        }
+      }
+      drift.camera_noise = !drift_no_noise;
+      drift.progress = !drift_quiet;
+      const coopmap::DriftBenchResult r = coopmap::runDriftBench(drift);
+      std::printf("%s\n%s/drift.csv, drift.md and seeds/ written\n", r.markdown.c_str(),
+                  drift.out_dir.c_str());
+    }
     if (cmd_fit->parsed()) {
       const coopmap::OdometryFitResult r = coopmap::runOdometryFit(fit);
       auto row = [](const char* name, const coopmap::DriftStats& s) {
@@ -189,6 +295,15 @@ int main(int argc, char** argv) {
           "cells); %s/corners.png and corners.json written\n",
           r.search.corners.size(), r.search.candidates, r.search.rejected_rms,
           r.search.not_converged, r.edge_cells, corners.out_dir.c_str());
+    }
+    if (cmd_carmen->parsed()) {
+      const coopmap::CarmenResult r = coopmap::runCarmen(carmen);
+      const coopmap::MapLimits& lim = r.grid->limits();
+      std::printf(
+          "%d scans of laser %d over %.1f s, odometry path %.1f m; map %d x %d cells at %.3f "
+          "m: %d occupied, %d free; %zu corners; outputs in %s\n",
+          r.scans, r.laser, r.duration_s, r.path_length_m, lim.width, lim.height, lim.resolution,
+          r.occupied_cells, r.free_cells, r.corners.search.corners.size(), carmen.out_dir.c_str());
     }
     if (cmd_eval->parsed()) {
       if (!tsukuba.empty()) {

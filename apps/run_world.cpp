@@ -30,6 +30,9 @@ struct RobotRun {
   RobotRunResult result;
   Pose2 last_true;
   GridU8 truth;  // true occupancy up to the robot's swept height
+  // Control steps of each kind of motion since the last sensing cycle: the cycle's segment
+  // is the kind most of them had.
+  int turn_steps = 0, straight_steps = 0;
 };
 
 void writeOutputs(const RunOptions& opt, const sim::World& world, const RunResult& result,
@@ -47,6 +50,7 @@ void writeOutputs(const RunOptions& opt, const sim::World& world, const RunResul
              "coopmap ground truth of " + name + " in world " + world.name);
     writeTum(opt.out_dir + "/trajectory_" + name + "_odometry.tum", r.result.odometry,
              "coopmap odometry of " + name + " in world " + world.name);
+    saveTraverseLog(opt.out_dir + "/traverse_" + name + ".traverse", r.mapper->traverse());
   }
   JsonWriter j;
   j.beginObject();
@@ -128,6 +132,7 @@ RunResult runWorld(const RunOptions& opt) {
     RobotRun r;
     r.driver = std::make_unique<SimRobot>(sim, index);
     r.mapper = std::make_unique<Mapper>(model.description, limits, MapperConfig{});
+    r.mapper->setRobotName(spec.name);
     r.follower = std::make_unique<RouteFollower>(spec.route, RouteConfig{});
     r.result.name = spec.name;
     r.last_true = spec.start;
@@ -164,7 +169,12 @@ RunResult runWorld(const RunOptions& opt) {
         }
         timing.render_s += seconds(render_start, Clock::now());
         if (frame) {
-          r.mapper->process(*frame);
+          const MotionSegment segment = r.turn_steps + r.straight_steps == 0 ? MotionSegment::kStop
+                                        : r.turn_steps > r.straight_steps
+                                            ? MotionSegment::kTurn
+                                            : MotionSegment::kStraight;
+          r.turn_steps = r.straight_steps = 0;
+          r.mapper->process(*frame, segment);
           ++r.result.frames;
         }
       }
@@ -172,8 +182,12 @@ RunResult runWorld(const RunOptions& opt) {
       r.result.odometry.push_back({t, r.driver->odometry()});
       // Drift experiments steer by the true pose (as a person driving the route would), so
       // the path is the intended one and odometry only records it.
-      r.driver->command(
-          r.follower->update(opt.steer_by_truth ? sim.truePose(i) : r.driver->odometry()));
+      const MotionCommand cmd =
+          r.follower->update(opt.steer_by_truth ? sim.truePose(i) : r.driver->odometry(), t);
+      r.driver->command(cmd);
+      const MotionSegment segment = segmentOf(cmd);
+      r.turn_steps += segment == MotionSegment::kTurn;
+      r.straight_steps += segment == MotionSegment::kStraight;
       // A robot without a route stays put for the whole run.
       all_done = all_done && r.follower->done() && !sim.spec(i).route.empty();
     }

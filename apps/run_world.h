@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "core/correction/traverse_log.h"
 #include "core/io/tum.h"
 #include "core/mapping/map_metrics.h"
 #include "core/perception/radial_map.h"
@@ -44,7 +45,7 @@ struct RobotRunResult {
   double odometry_error_deg = 0.0;
   MapMetrics map;
   std::vector<StampedPose2> groundtruth, odometry;
-  std::vector<RadialMap> traverse;  // every radial map with the odometry pose it was taken at
+  TraverseLog traverse;  // every radial map with the odometry pose it was taken at
 };
 
 // Wall time per stage of a run, all robots together (s).

@@ -12,19 +12,20 @@ Mapper::Mapper(const RobotDescription& robot, const MapLimits& limits, const Map
   config_.radial.validate();
 }
 
-const RadialMap& Mapper::process(const TrinocularFrame& frame) {
+const RadialMap& Mapper::process(const TrinocularFrame& frame, MotionSegment segment) {
   using Clock = std::chrono::steady_clock;
   const auto t0 = Clock::now();
   stats_ = matcher_.compute(frame.reference, frame.horizontal, frame.vertical, disparity_);
   const auto t1 = Clock::now();
-  traverse_.push_back(
-      buildRadialMap(disparity_, robot_, config_.radial, frame.stamp, frame.odometry));
-  grid_.insert(traverse_.back(), frame.odometry);
+  TraverseEntry& entry = traverse_.entries.emplace_back();
+  entry.segment = segment;
+  entry.scan = buildRadialMap(disparity_, robot_, config_.radial, frame.stamp, frame.odometry);
+  grid_.insert(entry.scan, frame.odometry);
   const auto t2 = Clock::now();
   timing_.stereo_s += std::chrono::duration<double>(t1 - t0).count();
   timing_.mapping_s += std::chrono::duration<double>(t2 - t1).count();
   ++timing_.frames;
-  return traverse_.back();
+  return entry.scan;
 }
 
 }  // namespace coopmap

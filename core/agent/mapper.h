@@ -2,10 +2,12 @@
 // occupancy grid update, with the radial maps kept for the traverse.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include <opencv2/core/mat.hpp>
 
+#include "core/correction/traverse_log.h"
 #include "core/mapping/occupancy_grid.h"
 #include "core/perception/radial_map.h"
 #include "core/robot/robot_interface.h"
@@ -30,13 +32,16 @@ class Mapper {
  public:
   Mapper(const RobotDescription& robot, const MapLimits& limits, const MapperConfig& config);
 
-  // Runs one sensing cycle on a frame; the map is updated at the frame's odometry pose.
+  // Runs one sensing cycle on a frame; the map is updated at the frame's odometry pose and
+  // the radial map appended to the traverse log with the motion segment under way.
   // Returns the radial map it inserted.
-  const RadialMap& process(const TrinocularFrame& frame);
+  const RadialMap& process(const TrinocularFrame& frame,
+                           MotionSegment segment = MotionSegment::kStop);
 
   const OccupancyGrid& grid() const { return grid_; }
   const cv::Mat& lastDisparity() const { return disparity_; }
-  const std::vector<RadialMap>& traverse() const { return traverse_; }
+  const TraverseLog& traverse() const { return traverse_; }
+  void setRobotName(const std::string& name) { traverse_.robot = name; }
   const StereoStats& lastStereoStats() const { return stats_; }
   const MapperTiming& timing() const { return timing_; }
 
@@ -47,7 +52,7 @@ class Mapper {
   OccupancyGrid grid_;
   cv::Mat disparity_;
   StereoStats stats_;
-  std::vector<RadialMap> traverse_;
+  TraverseLog traverse_;
   MapperTiming timing_;
 };
 

@@ -24,7 +24,7 @@ RouteFollower::RouteFollower(std::vector<Waypoint> route, const RouteConfig& con
   config_.validate();
 }
 
-MotionCommand RouteFollower::update(const Pose2& pose) {
+MotionCommand RouteFollower::update(const Pose2& pose, double now) {
   while (next_ < route_.size()) {
     const Waypoint& wp = route_[next_];
     const Eigen::Vector2d to = wp.position - pose.translation();
@@ -48,6 +48,11 @@ MotionCommand RouteFollower::update(const Pose2& pose) {
       case Phase::kDrive: {
         // Arrived, or passed the waypoint (it is now behind the robot).
         if (dist < config_.arrive_tolerance || std::abs(bearing_err) > M_PI / 2) {
+          if (wp.wait > 0.0) {
+            phase_ = Phase::kWait;
+            wait_until_ = now + wp.wait;
+            return MotionCommand::stop();
+          }
           if (wp.spin) {
             phase_ = Phase::kSpin;
             spin_done_ = 0.0;
@@ -67,6 +72,17 @@ MotionCommand RouteFollower::update(const Pose2& pose) {
                                     config_.angular_speed);
         return {v, w};
       }
+      case Phase::kWait:
+        if (now < wait_until_ - 1e-9) return MotionCommand::stop();
+        if (wp.spin) {
+          phase_ = Phase::kSpin;
+          spin_done_ = 0.0;
+          last_theta_ = pose.theta;
+          continue;
+        }
+        ++next_;
+        phase_ = Phase::kTurn;
+        continue;
       case Phase::kSpin:
         spin_done_ += wrapAngle(pose.theta - last_theta_);
         last_theta_ = pose.theta;

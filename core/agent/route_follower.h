@@ -15,6 +15,7 @@ struct Waypoint {
   Eigen::Vector2d position{0.0, 0.0};  // m, odometry (map) frame
   bool spin = false;                   // turn a full circle on arrival
   double spin_rate = 0.0;              // rad/s for that turn; 0: the route's turn rate
+  double wait = 0.0;                   // s to stand still on arrival (before a spin)
 };
 
 struct RouteConfig {
@@ -30,19 +31,21 @@ class RouteFollower {
  public:
   RouteFollower(std::vector<Waypoint> route, const RouteConfig& config);
 
-  // The command for the current odometry pose; call at the control rate.
-  MotionCommand update(const Pose2& pose);
+  // The command for the current odometry pose at time `now` (s, robot clock; only waits
+  // need it); call at the control rate.
+  MotionCommand update(const Pose2& pose, double now = 0.0);
   bool done() const { return next_ >= route_.size(); }
   size_t nextWaypoint() const { return next_; }
 
  private:
-  enum class Phase { kTurn, kDrive, kSpin };
+  enum class Phase { kTurn, kDrive, kWait, kSpin };
   std::vector<Waypoint> route_;
   RouteConfig config_;
   size_t next_ = 0;
   Phase phase_ = Phase::kTurn;
   double spin_done_ = 0.0;  // rad turned so far in a spin
   double last_theta_ = 0.0;
+  double wait_until_ = 0.0;  // s, end of the current wait
 };
 
 }  // namespace coopmap

@@ -5,13 +5,6 @@
 
 namespace coopmap {
 
-OccupancyGrid localMap(const std::vector<RadialMap>& scans, const MapLimits& limits,
-                       const OccupancyConfig& config) {
-  OccupancyGrid grid(limits, config);
-  for (const RadialMap& scan : scans) grid.insert(scan, scan.odometry);
-  return grid;
-}
-
 HomeBaseRegistration registerHomeBase(const CornerDetector& detector, const Eigen::Vector2d& first,
                                       const Eigen::Vector2d& second, double search_radius) {
   HomeBaseRegistration r;
@@ -29,16 +22,14 @@ HomeBaseRegistration registerHomeBase(const CornerDetector& detector, const Eige
   return r;
 }
 
-HomeBaseFix localizeAtHomeBase(const CornerDetector& detector, const HomeBase& home,
-                               const Pose2& odometry, double search_radius,
-                               double max_separation_error) {
+namespace {
+
+// The fix from a pair of observed corners matched to the registered ones.
+HomeBaseFix fixFromCorners(const HomeBase& home, const Corner& first, const Corner& second,
+                           const Pose2& odometry, double resolution, double max_separation_error) {
   HomeBaseFix fix;
-  const CornerSearch a = detector.findNear(home.first.position, search_radius, home.first.heading);
-  const CornerSearch b =
-      detector.findNear(home.second.position, search_radius, home.second.heading);
-  if (a.status != CornerStatus::kOk || b.status != CornerStatus::kOk) return fix;
-  fix.first = a.corners.front();
-  fix.second = b.corners.front();
+  fix.first = first;
+  fix.second = second;
   const Eigen::Vector2d reg = home.second.position - home.first.position;
   const Eigen::Vector2d obs = fix.second.position - fix.first.position;
   fix.separation_error = std::abs(obs.norm() - reg.norm());
@@ -58,13 +49,69 @@ HomeBaseFix localizeAtHomeBase(const CornerDetector& detector, const HomeBase& h
   fix.pose = fix.correction * odometry;
   // Uncertainty: each corner's position to about its RMS / sqrt(points) cells; both ends of
   // the joining line add to the heading error.
-  const double res = detector.limits().resolution;
   fix.rms = std::max(fix.first.rms, fix.second.rms);
-  const double per_corner = std::max(0.1, fix.rms / 4.0) * res;  // m
+  const double per_corner = std::max(0.1, fix.rms / 4.0) * resolution;  // m
   fix.sigma_xy = per_corner / std::sqrt(2.0);
   fix.sigma_theta = std::sqrt(2.0) * per_corner / std::max(obs.norm(), 1e-6);
   fix.status = HomeBaseStatus::kOk;
   return fix;
+}
+
+}  // namespace
+
+HomeBaseFix localizeAtHomeBase(const CornerDetector& detector, const HomeBase& home,
+                               const Pose2& odometry, double search_radius,
+                               double max_separation_error, const Pose2& guess) {
+  const Pose2 to_odometry = guess.inverse();
+  const CornerSearch a = detector.findNear(to_odometry * home.first.position, search_radius,
+                                           wrapAngle(home.first.heading + to_odometry.theta));
+  const CornerSearch b = detector.findNear(to_odometry * home.second.position, search_radius,
+                                           wrapAngle(home.second.heading + to_odometry.theta));
+  if (a.status != CornerStatus::kOk || b.status != CornerStatus::kOk) return {};
+  return fixFromCorners(home, a.corners.front(), b.corners.front(), odometry,
+                        detector.limits().resolution, max_separation_error);
+}
+
+HomeBaseFix findHomeBase(const CornerDetector& detector, const HomeBase& home,
+                         const Pose2& odometry, const Eigen::Vector2d& center, double radius,
+                         double max_separation_error) {
+  const CornerSearch all = detector.findAll();
+  std::vector<Corner> near;
+  for (const Corner& c : all.corners)
+    if ((c.position - center).norm() <= radius) near.push_back(c);
+  const Eigen::Vector2d reg = home.second.position - home.first.position;
+  const double reg_angle = std::atan2(reg.y(), reg.x());
+  const double rel1 = wrapAngle(home.first.heading - reg_angle);
+  const double rel2 = wrapAngle(home.second.heading - reg_angle);
+  // Score: separation error in units of 2 cm plus heading mismatches in units of 5 degrees.
+  const double deg5 = 5.0 * M_PI / 180.0;
+  double best_score = 1e300;
+  const Corner *best_a = nullptr, *best_b = nullptr;
+  for (const Corner& a : near)
+    for (const Corner& b : near) {
+      if (&a == &b) continue;
+      const Eigen::Vector2d obs = b.position - a.position;
+      const double sep = std::abs(obs.norm() - reg.norm());
+      if (sep > max_separation_error) continue;
+      const double angle = std::atan2(obs.y(), obs.x());
+      const double h1 = std::abs(wrapAngle(a.heading - angle - rel1));
+      const double h2 = std::abs(wrapAngle(b.heading - angle - rel2));
+      if (h1 > 4 * deg5 || h2 > 4 * deg5) continue;
+      const double score = sep / 0.02 + (h1 + h2) / deg5;
+      if (score < best_score) {
+        best_score = score;
+        best_a = &a;
+        best_b = &b;
+      }
+    }
+  if (!best_a) {
+    HomeBaseFix none;
+    none.status =
+        near.size() < 2 ? HomeBaseStatus::kCornerNotFound : HomeBaseStatus::kGeometryMismatch;
+    return none;
+  }
+  return fixFromCorners(home, *best_a, *best_b, odometry, detector.limits().resolution,
+                        max_separation_error);
 }
 
 }  // namespace coopmap

@@ -33,11 +33,6 @@ struct HomeBaseFix {
   Corner first, second;           // as observed (odometry frame)
 };
 
-// An occupancy grid of just these radial maps, each inserted at its own odometry pose:
-// the local map a robot makes while it turns in place at the home base.
-OccupancyGrid localMap(const std::vector<RadialMap>& scans, const MapLimits& limits,
-                       const OccupancyConfig& config = {});
-
 // Registers the home base: the two corners found near the predicted positions (m).
 // Returns nullopt with the detector's status when a corner is not found.
 struct HomeBaseRegistration {
@@ -48,10 +43,19 @@ HomeBaseRegistration registerHomeBase(const CornerDetector& detector, const Eige
                                       const Eigen::Vector2d& second, double search_radius);
 
 // Localizes against the home base: `detector` works on a map built in the odometry frame on
-// return; `odometry` is the robot's odometry pose. Corners are searched near their
-// registered positions (where uncorrected odometry predicts them).
+// return; `odometry` is the robot's odometry pose. Corners are searched within
+// `search_radius` of where the correction guess X_MO (map from odometry; identity: where
+// uncorrected odometry predicts them) puts the registered corners.
 HomeBaseFix localizeAtHomeBase(const CornerDetector& detector, const HomeBase& home,
                                const Pose2& odometry, double search_radius,
-                               double max_separation_error = 0.1);
+                               double max_separation_error = 0.1, const Pose2& guess = {});
+
+// Localizes against the home base when odometry may be far off: every corner within
+// `radius` of `center` (odometry frame, m) is a candidate, and the pair whose separation
+// and headings relative to the line joining them match the registered corners best is
+// taken as the home base.
+HomeBaseFix findHomeBase(const CornerDetector& detector, const HomeBase& home,
+                         const Pose2& odometry, const Eigen::Vector2d& center, double radius,
+                         double max_separation_error = 0.1);
 
 }  // namespace coopmap

@@ -1,6 +1,7 @@
 #include "core/mapping/occupancy_grid.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -60,6 +61,48 @@ void OccupancyGrid::touch(size_t cell, int delta, bool observed) {
   pending_seen_[cell] = pending_seen_[cell] || observed;
 }
 
+namespace {
+
+// Walks the cells a ray crosses (Amanatides-Woo), from parameter t = 0 at `origin`, calling
+// visit(cell index, s) with s the distance of the cell centre along the ray, until visit
+// returns false, the ray reaches t_end or leaves the grid. s grows along the walk. With
+// t_start, `origin` is the point at that distance along the ray and s counts from there.
+template <typename Visit>
+void walkRay(const MapLimits& lim, const Eigen::Vector2d& origin, double dx, double dy,
+             double t_end, Visit&& visit, double t_start = 0.0) {
+  const double res = lim.resolution;
+  int ix = lim.cellX(origin.x()), iy = lim.cellY(origin.y());
+  const int step_x = dx > 0 ? 1 : -1, step_y = dy > 0 ? 1 : -1;
+  const double inf = std::numeric_limits<double>::infinity();
+  const double next_x = lim.origin.x() + (ix + (step_x > 0 ? 1 : 0)) * res;
+  const double next_y = lim.origin.y() + (iy + (step_y > 0 ? 1 : 0)) * res;
+  double t_max_x = dx != 0.0 ? (next_x - origin.x()) / dx : inf;
+  double t_max_y = dy != 0.0 ? (next_y - origin.y()) / dy : inf;
+  const double t_delta_x = dx != 0.0 ? res / std::abs(dx) : inf;
+  const double t_delta_y = dy != 0.0 ? res / std::abs(dy) : inf;
+  const Eigen::Vector2d c0 = lim.cellCenter(ix, iy) - origin;
+  double s = c0.x() * dx + c0.y() * dy + t_start;
+  const double ds_x = step_x * res * dx, ds_y = step_y * res * dy;  // both >= 0
+  double t = 0.0;
+  while (t < t_end) {
+    if (!lim.contains(ix, iy)) return;
+    if (!visit(lim.index(ix, iy), s)) return;
+    if (t_max_x < t_max_y) {
+      t = t_max_x;
+      t_max_x += t_delta_x;
+      ix += step_x;
+      s += ds_x;
+    } else {
+      t = t_max_y;
+      t_max_y += t_delta_y;
+      iy += step_y;
+      s += ds_y;
+    }
+  }
+}
+
+}  // namespace
+
 void OccupancyGrid::insert(const RadialMap& scan, const Pose2& X_WR) {
   const MapLimits& lim = log_odds_.limits;
   if (++scan_id_ == 0) {  // wrapped: reset stamps
@@ -69,60 +112,88 @@ void OccupancyGrid::insert(const RadialMap& scan, const Pose2& X_WR) {
   touched_.clear();
   const Eigen::Vector2d origin = X_WR * scan.sensor_origin;
   const double res = lim.resolution;
+  auto halfWidth = [&](const RadialReading& r) {
+    return std::max(0.5 * res + config_.min_half_width, config_.sigma_scale * r.sigma);
+  };
 
+  // Pass 1: the uncertainty region of every return (occupied evidence, few cells).
   for (const RadialReading& reading : scan.readings) {
-    if (reading.kind == RadialKind::kNone) continue;
-    const bool hit = reading.kind == RadialKind::kHit;
-    const double half_width =
-        hit ? std::max(0.5 * res + config_.min_half_width, config_.sigma_scale * reading.sigma)
-            : 0.0;
-    const double t_end = hit ? reading.range + half_width : reading.range;
+    if (reading.kind != RadialKind::kHit) continue;
+    const double half_width = halfWidth(reading);
     // The evidence of one return is spread over its uncertainty region: a far, uncertain
     // return adds less occupancy per cell than a near, sharp one.
-    const double peak = hit ? config_.occupied_delta * std::min(1.0, res / half_width) : 0.0;
+    const double peak = config_.occupied_delta * std::min(1.0, res / half_width);
     const double a = X_WR.theta + reading.bearing;
     const double dx = std::cos(a), dy = std::sin(a);
-
-    // Amanatides-Woo traversal of the cells the ray crosses, from the sensor outwards.
-    int ix = lim.cellX(origin.x()), iy = lim.cellY(origin.y());
-    const int step_x = dx > 0 ? 1 : -1, step_y = dy > 0 ? 1 : -1;
-    const double inf = std::numeric_limits<double>::infinity();
-    const double next_x = lim.origin.x() + (ix + (step_x > 0 ? 1 : 0)) * res;
-    const double next_y = lim.origin.y() + (iy + (step_y > 0 ? 1 : 0)) * res;
-    double t_max_x = dx != 0.0 ? (next_x - origin.x()) / dx : inf;
-    double t_max_y = dy != 0.0 ? (next_y - origin.y()) / dy : inf;
-    const double t_delta_x = dx != 0.0 ? res / std::abs(dx) : inf;
-    const double t_delta_y = dy != 0.0 ? res / std::abs(dy) : inf;
-    double t = 0.0;
-    while (t < t_end) {
-      if (!lim.contains(ix, iy)) break;
-      const Eigen::Vector2d c = lim.cellCenter(ix, iy) - origin;
-      const double s = c.x() * dx + c.y() * dy;  // distance of the cell centre along the ray
-      int delta = config_.free_delta;
-      if (hit && s >= reading.range - half_width) {
-        const double w = 1.0 - std::abs(s - reading.range) / half_width;
-        delta = std::max(1, static_cast<int>(std::lround(peak * std::max(0.25, w))));
-      } else if (!hit && s > reading.range) {
-        break;
-      }
-      // Cells up to the measured surface were observed; those behind it only get evidence.
-      touch(lim.index(ix, iy), delta, !hit || s <= reading.range + 0.5 * res);
-      if (t_max_x < t_max_y) {
-        t = t_max_x;
-        t_max_x += t_delta_x;
-        ix += step_x;
-      } else {
-        t = t_max_y;
-        t_max_y += t_delta_y;
-        iy += step_y;
+    const double near = reading.range - half_width;
+    const double start = std::max(0.0, near - res);  // the walk begins just before the region
+    walkRay(
+        lim, origin + start * Eigen::Vector2d(dx, dy), dx, dy, reading.range + half_width - start,
+        [&](size_t cell, double s) {
+          if (s < near) return true;
+          const double w = 1.0 - std::abs(s - reading.range) / half_width;
+          const int delta = std::max(1, static_cast<int>(std::lround(peak * std::max(0.25, w))));
+          // Cells up to the measured surface were observed; those behind it only get evidence.
+          touch(cell, delta, s <= reading.range + 0.5 * res);
+          return true;
+        },
+        start);
+  }
+  // Pass 2: free space up to each return's uncertainty region (or up to the range of a
+  // "beyond" column). A cell is updated once per scan and occupied evidence wins, so cells
+  // already touched this scan are skipped (but count as observed).
+  const int lo = -config_.clamp, hi = config_.clamp;
+  const int16_t free_delta = static_cast<int16_t>(config_.free_delta);
+  int16_t* log_odds = log_odds_.cells.data();
+  uint8_t* seen = seen_.cells.data();
+  uint32_t* stamp = stamp_.data();
+  auto freeUntil = [&](const RadialReading& r) {
+    if (r.kind == RadialKind::kNone) return 0.0;
+    return r.kind == RadialKind::kHit ? r.range - halfWidth(r) : r.range;
+  };
+  // Near the sensor neighbouring rays cross the same cells. Over the columns, a binary
+  // hierarchy: a column at level l (2^l divides its index, 2^(l+1) does not) starts its
+  // walk where the two coarser columns 2^l to either side have drifted more than 0.7 cell
+  // apart, and no farther than they reach; column 0 and the ends walk from the sensor.
+  const size_t n = scan.readings.size();
+  for (size_t k = 0; k < n; ++k) {
+    const RadialReading& reading = scan.readings[k];
+    if (reading.kind == RadialKind::kNone) continue;
+    const bool hit = reading.kind == RadialKind::kHit;
+    const double until = freeUntil(reading);
+    double start = 0.0;
+    if (k > 0) {
+      const size_t step = size_t{1} << std::countr_zero(k);
+      if (k + step < n) {
+        const RadialReading& left = scan.readings[k - step];
+        const RadialReading& right = scan.readings[k + step];
+        const double gap = std::abs(right.bearing - left.bearing);
+        if (gap > 1e-9) {
+          start = std::min({0.7 * res / gap, freeUntil(left), freeUntil(right)});
+          start = std::max(0.0, std::min(start, until) - res);
+        }
       }
     }
+    const double a = X_WR.theta + reading.bearing;
+    const double dx = std::cos(a), dy = std::sin(a);
+    walkRay(
+        lim, origin + start * Eigen::Vector2d(dx, dy), dx, dy, until + res - start,
+        [&](size_t cell, double s) {
+          if (hit ? s >= until : s > until) return false;
+          if (stamp[cell] == scan_id_) {
+            pending_seen_[cell] = 1;
+            return true;
+          }
+          stamp[cell] = scan_id_;
+          log_odds[cell] = static_cast<int16_t>(std::max(lo, log_odds[cell] + free_delta));
+          seen[cell] = 1;
+          return true;
+        },
+        start);
   }
-  const int lo = -config_.clamp, hi = config_.clamp;
   for (size_t cell : touched_) {
-    log_odds_.cells[cell] =
-        static_cast<int16_t>(std::clamp(log_odds_.cells[cell] + pending_[cell], lo, hi));
-    if (pending_seen_[cell]) seen_.cells[cell] = 1;
+    log_odds[cell] = static_cast<int16_t>(std::clamp(log_odds[cell] + pending_[cell], lo, hi));
+    if (pending_seen_[cell]) seen[cell] = 1;
   }
 }
 

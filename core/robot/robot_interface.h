@@ -2,9 +2,11 @@
 // and the core (agent, mapping) sees nothing else of them.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <opencv2/core/mat.hpp>
 
@@ -33,6 +35,26 @@ struct TrinocularFrame {
   cv::Mat reference;   // CV_8UC1
   cv::Mat horizontal;  // CV_8UC1, partner offset by rig.horizontal_offset
   cv::Mat vertical;    // CV_8UC1, partner offset by rig.vertical_offset
+};
+
+// A planar range scan (a laser, or any sensor of ranges along a fan of rays) with the
+// odometry pose at capture. Beam i leaves sensor_origin at bearing
+// start_angle + i * angular_resolution in the robot frame (CCW from +x), so a sensor mounted
+// turned adds its yaw to start_angle.
+struct RangeScan {
+  double stamp = 0.0;                       // s, robot clock
+  Pose2 odometry;                           // X_OR: robot in the odometry frame at capture
+  double start_angle = 0.0;                 // rad, bearing of beam 0 in the robot frame
+  double angular_resolution = 0.0;          // rad from one beam to the next (CCW positive)
+  double max_range = 0.0;                   // m; a reading at or beyond it is "no return"
+  double range_sigma = 0.01;                // m, 1-sigma range noise
+  Eigen::Vector2d sensor_origin{0.0, 0.0};  // m, where the beams start, in the robot frame
+  std::vector<float> ranges;                // m per beam; <= 0 or not finite: invalid
+
+  // Bearing of beam i in the robot frame (rad).
+  double bearing(size_t i) const {
+    return start_angle + static_cast<double>(i) * angular_resolution;
+  }
 };
 
 // A motion command, held until the next: a velocity (v, omega), or a segment the base
@@ -70,6 +92,9 @@ class RobotInterface {
   virtual double now() const = 0;
   // Captures a trinocular frame now; nullopt when the cameras have nothing (yet).
   virtual std::optional<TrinocularFrame> captureFrame() = 0;
+  // Captures the next planar range scan; nullopt when there is none (yet), or when the
+  // robot has no range sensor (the default).
+  virtual std::optional<RangeScan> captureScan() { return std::nullopt; }
   // Odometry pose X_OR now (m, rad).
   virtual Pose2 odometry() const = 0;
   // Sets the motion command; held until replaced. Limits are applied by the base.

@@ -256,8 +256,10 @@ StereoStats TrinocularMatcher::compute(const cv::Mat& reference, const cv::Mat& 
         ++stats.rejected_centre;
         continue;
       }
-      const double denom = double(ch.minus) - 2.0 * ch.best + double(ch.plus);
-      const double offset = denom > 0.0 ? 0.5 * (double(ch.minus) - double(ch.plus)) / denom : 0.0;
+      // Sub-pixel: equiangular (V) fit, which SAD costs follow; a parabola pulls towards
+      // whole pixels ("pixel locking") and makes flat walls wavy at long range.
+      const double rise = double(std::max(ch.minus, ch.plus)) - double(ch.best);
+      const double offset = rise > 0.0 ? 0.5 * (double(ch.minus) - double(ch.plus)) / rise : 0.0;
       out[x] = static_cast<float>(ch.d + std::clamp(offset, -0.5, 0.5));
       ++stats.valid;
     }

@@ -67,8 +67,9 @@ Waypoint parseWaypoint(const YamlField& f) {
     return wp;
   }
   if (!f.isMap()) f.fail("a waypoint: [x, y] or {at: [x, y], spin: true}");
-  f.allowOnly({"at", "spin", "spin_rate_deg"});
+  f.allowOnly({"at", "wait", "spin", "spin_rate_deg"});
   wp.position = f["at"].asVector2();
+  if (f.has("wait")) wp.wait = f["wait"].asDouble(0.0, 600.0, "seconds in [0, 600]");
   if (f.has("spin")) wp.spin = f["spin"].asBool();
   if (f.has("spin_rate_deg"))
     wp.spin_rate = f["spin_rate_deg"].asDouble(1.0, 180.0, "a turn rate in [1, 180] deg/s") * kDeg;

@@ -51,9 +51,10 @@ TEST(DoorScenarioTest, DoorOpensOnScheduleInImagesAndGroundTruth) {
   o.duration = 10.0;
   o.odometry = "perfect";
   const RunResult r = runWorld(o);
-  const auto& scans = r.robots[0].traverse;
-  ASSERT_GT(scans.size(), 20u);
-  for (const RadialMap& s : scans) {
+  const auto& entries = r.robots[0].traverse.entries;
+  ASSERT_GT(entries.size(), 20u);
+  for (const TraverseEntry& e : entries) {
+    const RadialMap& s = e.scan;
     const double range = centralRange(s);
     if (s.stamp < 5.9) {
       EXPECT_NEAR(range, 1.85, 0.15) << "t " << s.stamp;  // the door

@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "apps/run_world.h"
-#include "core/localization/home_base.h"
+#include "core/correction/home_return.h"
 #include "tests/support/test_world.h"
 
 namespace coopmap {
@@ -37,8 +37,8 @@ TEST(PeopleScenarioTest, PersonCrossingShowsThenLeavesNoObstacle) {
   const RobotRunResult& robot = r.robots[0];
   // While crossing, some scan sees the person ~2.25 m ahead (the wall is at ~4.85 m).
   int person_scans = 0;
-  for (const RadialMap& scan : robot.traverse)
-    for (const RadialReading& rd : scan.readings)
+  for (const TraverseEntry& entry : robot.traverse.entries)
+    for (const RadialReading& rd : entry.scan.readings)
       if (rd.kind == RadialKind::kHit && rd.range < 2.8) {
         ++person_scans;
         break;

@@ -1,0 +1,303 @@
+#include "core/correction/home_return.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace coopmap {
+
+namespace {
+
+MapLimits localLimits(const Eigen::Vector2d& center, const HomeReturnConfig& config) {
+  const Eigen::Vector2d half(config.local_radius, config.local_radius);
+  return MapLimits::covering(center - half, center + half, config.resolution);
+}
+
+CornerConfig cornerConfig(const HomeReturnConfig& config, double arm_length) {
+  CornerConfig c = config.corners;
+  c.arm_cells = arm_length / config.resolution;
+  return c;
+}
+
+}  // namespace
+
+void HomeReturnConfig::validate() const {
+  auto check = [](const char* field, double v) {
+    if (!(v > 0.0 && std::isfinite(v)))
+      throw std::invalid_argument(std::string("home return: field '") + field +
+                                  "': expected a positive number, got " + std::to_string(v));
+  };
+  check("resolution", resolution);
+  check("local_radius", local_radius);
+  check("turn_radius", turn_radius);
+  check("facing_half_angle", facing_half_angle);
+  check("register_radius", register_radius);
+  check("register_max_turn", register_max_turn);
+  check("max_separation_error", max_separation_error);
+  if (!(search_radius >= 0.0))
+    throw std::invalid_argument("home return: field 'search_radius': expected a number >= 0, got " +
+                                std::to_string(search_radius));
+}
+
+const char* toString(HomeReturnStatus s) {
+  switch (s) {
+    case HomeReturnStatus::kOk:
+      return "ok";
+    case HomeReturnStatus::kNoReturnTurn:
+      return "no turn in place at the end of the log";
+    case HomeReturnStatus::kHomeBaseNotFound:
+      return "home base not found in the return turn's map";
+  }
+  return "?";
+}
+
+std::vector<size_t> turnInPlaceEntries(const TraverseLog& log, bool at_end, double turn_radius) {
+  std::vector<size_t> out;
+  const size_t n = log.entries.size();
+  if (n == 0) return out;
+  const Pose2 anchor =
+      at_end ? log.entries.back().scan.odometry : log.entries.front().scan.odometry;
+  auto near = [&](size_t i) {
+    const Pose2& p = log.entries[i].scan.odometry;
+    return std::hypot(p.x - anchor.x, p.y - anchor.y) < turn_radius;
+  };
+  if (at_end) {
+    size_t i = n;
+    while (i > 0 && near(i - 1)) --i;
+    for (; i < n; ++i) out.push_back(i);
+  } else {
+    for (size_t i = 0; i < n && near(i); ++i) out.push_back(i);
+  }
+  return out;
+}
+
+std::vector<size_t> entriesFacing(const TraverseLog& log, const std::vector<size_t>& entries,
+                                  const Eigen::Vector2d& target, double half_angle) {
+  std::vector<size_t> out;
+  for (size_t i : entries) {
+    const Pose2& p = log.entries[i].scan.odometry;
+    const Eigen::Vector2d to = target - p.translation();
+    if (std::abs(wrapAngle(std::atan2(to.y(), to.x()) - p.theta)) < half_angle) out.push_back(i);
+  }
+  return out;
+}
+
+OccupancyGrid localMap(const TraverseLog& log, const std::vector<size_t>& entries,
+                       const MapLimits& limits, const OccupancyConfig& config) {
+  OccupancyGrid grid(limits, config);
+  for (size_t i : entries) grid.insert(log.entries[i].scan, log.entries[i].scan.odometry);
+  return grid;
+}
+
+OccupancyGrid localMap(const TraverseLog& log, const MapLimits& limits,
+                       const OccupancyConfig& config) {
+  OccupancyGrid grid(limits, config);
+  for (const TraverseEntry& e : log.entries) grid.insert(e.scan, e.scan.odometry);
+  return grid;
+}
+
+namespace {
+
+// The entries of the start turn taken before it had turned more than register_max_turn.
+std::vector<size_t> referenceEntries(const TraverseLog& log, const HomeReturnConfig& config) {
+  std::vector<size_t> entries;
+  double turned = 0.0;
+  for (size_t i : turnInPlaceEntries(log, false, config.turn_radius)) {
+    if (i > 0)
+      turned += std::abs(
+          wrapAngle(log.entries[i].scan.odometry.theta - log.entries[i - 1].scan.odometry.theta));
+    if (turned > config.register_max_turn) break;
+    entries.push_back(i);
+  }
+  return entries;
+}
+
+}  // namespace
+
+HomeBaseRegistration registerHomeBaseFromLog(const TraverseLog& log, const Eigen::Vector2d& first,
+                                             const Eigen::Vector2d& second, double arm_length,
+                                             const HomeReturnConfig& config) {
+  config.validate();
+  const std::vector<size_t> turn = turnInPlaceEntries(log, false, config.turn_radius);
+  const std::vector<size_t> facing =
+      entriesFacing(log, turn, 0.5 * (first + second), config.facing_half_angle);
+  const std::vector<size_t> reference = referenceEntries(log, config);
+  if (facing.empty() || reference.empty()) return {};
+  const Eigen::Vector2d center = log.entries.front().scan.odometry.translation();
+  const MapLimits limits = localLimits(center, config);
+  OccupancyGrid map = localMap(log, reference, limits);
+  // The later scans facing the home base (the end of the turn, after a full circle) carry
+  // the turn's odometry error: align them to the reference scans first, then add them, so
+  // the map shows the home base from both sides of the first view without double walls.
+  std::vector<const RadialMap*> later;
+  for (size_t i : facing)
+    if (i > reference.back()) later.push_back(&log.entries[i].scan);
+  if (!later.empty()) {
+    const AlignmentResult a = alignScans(later, map, Pose2(), config.alignment);
+    if (a.ok)
+      for (const RadialMap* scan : later) map.insert(*scan, a.correction * scan->odometry);
+  }
+  const CornerDetector detector(classifyCells(map), cornerConfig(config, arm_length));
+  return registerHomeBase(detector, first, second, config.register_radius);
+}
+
+OccupancyGrid homeBaseReferenceMap(const TraverseLog& log, const HomeReturnConfig& config) {
+  config.validate();
+  const Eigen::Vector2d center =
+      log.entries.empty() ? Eigen::Vector2d(0, 0) : log.entries.front().scan.odometry.translation();
+  return localMap(log, referenceEntries(log, config), localLimits(center, config));
+}
+
+HomeReturn localizeFromLog(const TraverseLog& log, const HomeBase& home, double arm_length,
+                           const HomeReturnConfig& config, const OccupancyGrid* reference) {
+  config.validate();
+  HomeReturn out;
+  const std::vector<size_t> turn = turnInPlaceEntries(log, true, config.turn_radius);
+  if (turn.size() < 4) return out;
+  out.status = HomeReturnStatus::kHomeBaseNotFound;
+  const Pose2 at_turn = log.entries[turn.back()].scan.odometry;
+  const Eigen::Vector2d center = at_turn.translation();
+  const MapLimits limits = localLimits(center, config);
+  const CornerConfig corners = cornerConfig(config, arm_length);
+  const Eigen::Vector2d home_mid = 0.5 * (home.first.position + home.second.position);
+
+  // 1. The paper's fix. The whole turn: where is the home base, roughly? Then only the
+  // scans facing it (a few seconds of turning: little drift among them), corners refitted.
+  const OccupancyGrid whole = localMap(log, turn, limits);
+  const HomeBaseFix rough =
+      findHomeBase(CornerDetector(classifyCells(whole), corners), home, at_turn, center,
+                   config.local_radius, config.max_separation_error);
+  HomeBaseFix fix = rough;
+  size_t entry = turn.back();
+  std::vector<size_t> facing;
+  if (rough.status == HomeBaseStatus::kOk) {
+    const Eigen::Vector2d mid = 0.5 * (rough.first.position + rough.second.position);
+    facing = entriesFacing(log, turn, mid, config.facing_half_angle);
+    if (facing.size() >= 3) {
+      const OccupancyGrid map = localMap(log, facing, limits);
+      const CornerDetector detector(classifyCells(map), corners);
+      const HomeBaseFix refined =
+          localizeAtHomeBase(detector, home, log.entries[facing[facing.size() / 2]].scan.odometry,
+                             0.3, config.max_separation_error, rough.correction);
+      if (refined.status == HomeBaseStatus::kOk) {
+        fix = refined;
+        entry = facing[facing.size() / 2];
+      }
+    }
+    fix.pose = fix.correction * log.entries[entry].scan.odometry;
+    out.corner_fix = fix;
+  }
+
+  // 2. Better: align the scans facing the home base to the reference map of the start.
+  // Without a corner fix, the robot is at least back at the home base: try every heading
+  // with the turn's centre on the start position, keep the best.
+  if (reference) {
+    const ScanAligner aligner(*reference, config.alignment);
+    Pose2 guess = fix.correction;
+    if (fix.status != HomeBaseStatus::kOk) {
+      // The robot believes it is home: search headings in 2 degree steps and positions in
+      // 10 cm steps within search_radius of the start, scoring a subsample of the points.
+      std::vector<const RadialMap*> all;
+      for (size_t i : turn) all.push_back(&log.entries[i].scan);
+      const std::vector<Eigen::Vector2d> pts = aligner.obstaclePoints(all, 8);
+      const Pose2 start = log.entries.front().scan.odometry;
+      const int steps = static_cast<int>(std::floor(config.search_radius / 0.1));
+      double best = -1.0;
+      for (int k = 0; k < 180; ++k) {
+        const double heading = wrapAngle(at_turn.theta + k * M_PI / 90.0);
+        for (int i = -steps; i <= steps; ++i)
+          for (int j = -steps; j <= steps; ++j) {
+            if (std::hypot(i, j) > steps) continue;
+            const Pose2 g =
+                Pose2(start.x + 0.1 * i, start.y + 0.1 * j, heading) * at_turn.inverse();
+            const double sc = aligner.score(pts, g);
+            if (sc > best) {
+              best = sc;
+              guess = g;
+            }
+          }
+      }
+      const Pose2 to_odometry = guess.inverse();
+      facing = entriesFacing(log, turn, to_odometry * home_mid, config.facing_half_angle);
+      entry = facing.empty() ? turn.back() : facing[facing.size() / 2];
+    }
+    std::vector<const RadialMap*> scans;
+    for (size_t i : facing.size() >= 3 ? facing : turn) scans.push_back(&log.entries[i].scan);
+    out.alignment = aligner.align(scans, guess);
+    if (out.alignment.ok) {
+      // Again with a tighter robust scale: points near but off the reference's walls
+      // (another side of an obstacle, a stereo outlier) stop pulling.
+      AlignmentConfig tight = config.alignment;
+      tight.robust_scale = std::max(1.0, 0.5 * tight.robust_scale);
+      const AlignmentResult second =
+          ScanAligner(*reference, tight).align(scans, out.alignment.correction);
+      if (second.ok) out.alignment = second;
+    }
+    if (out.alignment.ok) {
+      out.refined = true;
+      fix.status = HomeBaseStatus::kOk;
+      fix.correction = out.alignment.correction;
+      fix.pose = fix.correction * log.entries[entry].scan.odometry;
+      fix.sigma_xy = config.refined_sigma_xy;
+      fix.sigma_theta = config.refined_sigma_theta;
+    }
+  }
+  out.fix = fix;
+  if (fix.status != HomeBaseStatus::kOk) return out;
+  out.scans = static_cast<int>(facing.size() >= 3 ? facing.size() : turn.size());
+  out.observation.entry = entry;
+  out.observation.pose = fix.pose;
+  out.observation.sigma_xy = std::max(fix.sigma_xy, 0.005);
+  out.observation.sigma_theta = std::max(fix.sigma_theta, 0.002);
+  out.status = HomeReturnStatus::kOk;
+  return out;
+}
+
+HomeBaseProtocol runHomeBaseProtocol(const TraverseLog& log, const HomeBase& nominal,
+                                     double arm_length, const HomeReturnConfig& config) {
+  HomeBaseProtocol p;
+  p.registration = registerHomeBaseFromLog(log, nominal.first.position, nominal.second.position,
+                                           arm_length, config);
+  p.home = p.registration.home ? *p.registration.home : nominal;
+  p.reference.emplace(homeBaseReferenceMap(log, config));
+  p.result = localizeFromLog(log, p.home, arm_length, config, &*p.reference);
+  p.method =
+      std::string(p.registration.home ? "registered" : "nominal") + " corners" +
+      (p.result.corner_fix.status == HomeBaseStatus::kOk ? "" : " (not found)") +
+      (p.result.refined ? " + alignment" : " (alignment: " + p.result.alignment.message + ")");
+  return p;
+}
+
+std::vector<PoseObservation> referenceClosures(const TraverseLog& log,
+                                               const std::vector<Pose2>& estimate,
+                                               const OccupancyGrid& reference, size_t until,
+                                               const HomeReturnConfig& config) {
+  config.validate();
+  std::vector<PoseObservation> out;
+  if (log.entries.empty() || estimate.size() != log.entries.size()) return out;
+  const Pose2 start = log.entries.front().scan.odometry;
+  // Not the reference's own entries.
+  const std::vector<size_t> own = referenceEntries(log, config);
+  const size_t skip = own.empty() ? 0 : own.back() + 1;
+  const size_t end = std::min(until, log.entries.size() - 1);
+  for (size_t i = std::max<size_t>(skip, 1); i < end; ++i) {
+    const Pose2& e = estimate[i];
+    if (std::hypot(e.x - start.x, e.y - start.y) > config.closure_radius ||
+        std::abs(wrapAngle(e.theta - start.theta)) > config.closure_half_angle)
+      continue;
+    const std::vector<const RadialMap*> scans = {&log.entries[i - 1].scan, &log.entries[i].scan,
+                                                 &log.entries[i + 1].scan};
+    const Pose2 guess = e * log.entries[i].scan.odometry.inverse();
+    const AlignmentResult a = alignScans(scans, reference, guess, config.alignment);
+    if (!a.ok) continue;
+    PoseObservation o;
+    o.entry = i;
+    o.pose = a.correction * log.entries[i].scan.odometry;
+    o.sigma_xy = config.refined_sigma_xy;
+    o.sigma_theta = config.refined_sigma_theta;
+    out.push_back(o);
+  }
+  return out;
+}
+
+}  // namespace coopmap

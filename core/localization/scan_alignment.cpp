@@ -1,0 +1,182 @@
+#include "core/localization/scan_alignment.h"
+
+#include <ceres/autodiff_cost_function.h>
+#include <ceres/cubic_interpolation.h>
+#include <ceres/loss_function.h>
+#include <ceres/problem.h>
+#include <ceres/solver.h>
+
+#include <cmath>
+#include <stdexcept>
+
+#include <opencv2/core/mat.hpp>
+#include <opencv2/imgproc.hpp>
+
+namespace coopmap {
+
+namespace {
+
+using Field = ceres::Grid2D<float, 1>;
+using Interpolator = ceres::BiCubicInterpolator<Field>;
+
+// Distance (cells) from a point's place in the reference to the nearest occupied cell.
+struct PointResidual {
+  PointResidual(const Interpolator* field, const Eigen::Vector2d& p, const MapLimits& limits)
+      : field(field), p(p), limits(limits) {}
+  template <typename T>
+  bool operator()(const T* pose, T* r) const {
+    const T c = cos(pose[2]), s = sin(pose[2]);
+    const T x = pose[0] + c * T(p.x()) - s * T(p.y());
+    const T y = pose[1] + s * T(p.x()) + c * T(p.y());
+    const T col = (x - T(limits.origin.x())) / T(limits.resolution) - T(0.5);
+    const T row = (y - T(limits.origin.y())) / T(limits.resolution) - T(0.5);
+    field->Evaluate(row, col, r);
+    return true;
+  }
+  const Interpolator* field;
+  Eigen::Vector2d p;
+  MapLimits limits;
+};
+
+}  // namespace
+
+void AlignmentConfig::validate() const {
+  auto check = [](const char* field, double v) {
+    if (!(v > 0.0 && std::isfinite(v)))
+      throw std::invalid_argument(std::string("scan alignment: field '") + field +
+                                  "': expected a positive number, got " + std::to_string(v));
+  };
+  check("max_range", max_range);
+  check("robust_scale", robust_scale);
+  check("inlier_cells", inlier_cells);
+  check("min_inlier_share", min_inlier_share);
+  check("min_points", min_points);
+  check("max_iterations", max_iterations);
+}
+
+ScanAligner::ScanAligner(const OccupancyGrid& reference, const AlignmentConfig& config)
+    : reference_(reference), config_(config) {
+  config_.validate();
+  const MapLimits& lim = reference.limits();
+  cv::Mat free_mask(lim.height, lim.width, CV_8U);
+  for (int iy = 0; iy < lim.height; ++iy)
+    for (int ix = 0; ix < lim.width; ++ix) {
+      const bool occ = reference.state(ix, iy) == CellState::kOccupied;
+      free_mask.at<uint8_t>(iy, ix) = occ ? 0 : 255;
+      occupied_ += occ;
+    }
+  cv::distanceTransform(free_mask, field_, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
+}
+
+double ScanAligner::distance(const Eigen::Vector2d& q) const {
+  const MapLimits& lim = reference_.limits();
+  const int ix = lim.cellX(q.x()), iy = lim.cellY(q.y());
+  if (!lim.contains(ix, iy)) return 1e9;
+  return field_.at<float>(iy, ix);
+}
+
+std::vector<Eigen::Vector2d> ScanAligner::points(const std::vector<const RadialMap*>& scans,
+                                                 const Pose2& guess) const {
+  // Obstacle points in the odometry frame; only those the reference has seen around.
+  const MapLimits& lim = reference_.limits();
+  std::vector<Eigen::Vector2d> out;
+  for (const RadialMap* scan : scans)
+    for (const RadialReading& r : scan->readings) {
+      if (r.kind != RadialKind::kHit || r.range > config_.max_range) continue;
+      const Eigen::Vector2d in_robot =
+          scan->sensor_origin + r.range * Eigen::Vector2d(std::cos(r.bearing), std::sin(r.bearing));
+      const Eigen::Vector2d p = scan->odometry * in_robot;
+      const Eigen::Vector2d q = guess * p;
+      const int ix = lim.cellX(q.x()), iy = lim.cellY(q.y());
+      if (!lim.contains(ix, iy)) continue;
+      if (!reference_.seen(ix, iy) && field_.at<float>(iy, ix) > config_.robust_scale) continue;
+      out.push_back(p);
+    }
+  return out;
+}
+
+std::vector<Eigen::Vector2d> ScanAligner::obstaclePoints(const std::vector<const RadialMap*>& scans,
+                                                         int stride) const {
+  std::vector<Eigen::Vector2d> out;
+  int k = 0;
+  for (const RadialMap* scan : scans)
+    for (const RadialReading& r : scan->readings) {
+      if (r.kind != RadialKind::kHit || r.range > config_.max_range) continue;
+      if (k++ % std::max(1, stride) != 0) continue;
+      out.push_back(scan->odometry *
+                    (scan->sensor_origin +
+                     r.range * Eigen::Vector2d(std::cos(r.bearing), std::sin(r.bearing))));
+    }
+  return out;
+}
+
+double ScanAligner::score(const std::vector<Eigen::Vector2d>& points, const Pose2& guess) const {
+  int near = 0;
+  for (const Eigen::Vector2d& p : points) near += distance(guess * p) <= config_.robust_scale;
+  return points.empty() ? 0.0 : static_cast<double>(near) / points.size();
+}
+
+double ScanAligner::score(const std::vector<const RadialMap*>& scans, const Pose2& guess) const {
+  return score(obstaclePoints(scans), guess);
+}
+
+AlignmentResult ScanAligner::align(const std::vector<const RadialMap*>& scans,
+                                   const Pose2& guess) const {
+  AlignmentResult result;
+  if (occupied_ == 0) {
+    result.message = "the reference map has no occupied cells";
+    return result;
+  }
+  const MapLimits& lim = reference_.limits();
+  const Field field(field_.ptr<float>(), 0, lim.height, 0, lim.width);
+  const Interpolator interpolator(field);
+  const std::vector<Eigen::Vector2d> pts = points(scans, guess);
+  result.points = static_cast<int>(pts.size());
+  if (result.points < config_.min_points) {
+    result.message = std::to_string(result.points) + " obstacle points in the reference's view, " +
+                     "expected at least " + std::to_string(config_.min_points);
+    return result;
+  }
+  double pose[3] = {guess.x, guess.y, guess.theta};
+  ceres::Problem problem;
+  for (const Eigen::Vector2d& p : pts)
+    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PointResidual, 1, 3>(
+                                 new PointResidual(&interpolator, p, lim)),
+                             new ceres::TukeyLoss(config_.robust_scale), pose);
+  ceres::Solver::Options options;
+  options.max_num_iterations = config_.max_iterations;
+  options.num_threads = 1;
+  options.logging_type = ceres::SILENT;
+  options.linear_solver_type = ceres::DENSE_QR;
+  ceres::Solver::Summary summary;
+  ceres::Solve(options, &problem, &summary);
+  result.iterations = static_cast<int>(summary.iterations.size());
+  result.correction = Pose2(pose[0], pose[1], wrapAngle(pose[2]));
+  double sq = 0.0;
+  for (const Eigen::Vector2d& p : pts) {
+    double d;
+    PointResidual(&interpolator, p, lim)(pose, &d);
+    if (std::abs(d) <= config_.inlier_cells) {
+      ++result.inliers;
+      sq += d * d;
+    }
+  }
+  result.rms_cells = result.inliers > 0 ? std::sqrt(sq / result.inliers) : 0.0;
+  if (result.inliers < config_.min_inlier_share * result.points) {
+    result.message = std::to_string(result.inliers) + " of " + std::to_string(result.points) +
+                     " points on the reference's obstacles, expected a share of at least " +
+                     std::to_string(config_.min_inlier_share);
+    return result;
+  }
+  result.ok = summary.IsSolutionUsable();
+  if (!result.ok) result.message = "the solver failed: " + summary.message;
+  return result;
+}
+
+AlignmentResult alignScans(const std::vector<const RadialMap*>& scans,
+                           const OccupancyGrid& reference, const Pose2& guess,
+                           const AlignmentConfig& config) {
+  return ScanAligner(reference, config).align(scans, guess);
+}
+
+}  // namespace coopmap

@@ -1,0 +1,71 @@
+// Dense alignment of radial maps to a reference occupancy grid: the rigid correction that
+// puts the scans' obstacle points onto the reference's occupied cells (least squares on the
+// distance field of the occupied cells, robust to points the reference never saw).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <opencv2/core/mat.hpp>
+
+#include "core/geometry/pose2.h"
+#include "core/mapping/occupancy_grid.h"
+#include "core/perception/radial_map.h"
+
+namespace coopmap {
+
+struct AlignmentConfig {
+  double max_range = 3.5;         // m: farther returns are too noisy to help
+  double robust_scale = 3.0;      // cells: Tukey loss scale, points farther off count nothing
+  double inlier_cells = 1.0;      // a point within this of an occupied cell is an inlier
+  double min_inlier_share = 0.5;  // fewer inliers than this share of the points: failure
+  int min_points = 50;
+  int max_iterations = 50;
+  void validate() const;  // throws std::invalid_argument naming the field
+};
+
+struct AlignmentResult {
+  bool ok = false;
+  std::string message;  // why not, when !ok
+  Pose2 correction;     // X_MO: maps the scans' odometry frame onto the reference's frame
+  int points = 0;       // obstacle points used
+  int inliers = 0;
+  double rms_cells = 0.0;  // RMS distance of the inliers to the nearest occupied cell
+  int iterations = 0;
+};
+
+// A reference map prepared for alignment (its distance field computed once).
+class ScanAligner {
+ public:
+  explicit ScanAligner(const OccupancyGrid& reference, const AlignmentConfig& config = {});
+  ScanAligner(const ScanAligner&) = delete;
+  ScanAligner& operator=(const ScanAligner&) = delete;
+
+  // Aligns `scans` (each at its own odometry pose) to the reference, starting from `guess`
+  // (X_MO). Only hits within max_range are used.
+  AlignmentResult align(const std::vector<const RadialMap*>& scans, const Pose2& guess) const;
+  // Share of the scans' obstacle points within `robust_scale` of a reference obstacle when
+  // the scans are placed by `guess` (0 when there are no points): a cheap score for search.
+  double score(const std::vector<const RadialMap*>& scans, const Pose2& guess) const;
+  // The same for points already in the odometry frame (see obstaclePoints).
+  double score(const std::vector<Eigen::Vector2d>& points, const Pose2& guess) const;
+  // Every `stride`-th obstacle point of the scans within max_range, odometry frame.
+  std::vector<Eigen::Vector2d> obstaclePoints(const std::vector<const RadialMap*>& scans,
+                                              int stride = 1) const;
+
+ private:
+  std::vector<Eigen::Vector2d> points(const std::vector<const RadialMap*>& scans,
+                                      const Pose2& guess) const;
+  double distance(const Eigen::Vector2d& map_point) const;  // cells; large off the map
+  const OccupancyGrid& reference_;
+  AlignmentConfig config_;
+  cv::Mat field_;  // CV_32F distance to the nearest occupied cell (cells), rows = y
+  int occupied_ = 0;
+};
+
+// One-shot alignment (see ScanAligner::align).
+AlignmentResult alignScans(const std::vector<const RadialMap*>& scans,
+                           const OccupancyGrid& reference, const Pose2& guess,
+                           const AlignmentConfig& config = {});
+
+}  // namespace coopmap
