@@ -36,12 +36,12 @@ struct DriftRow {
   double home_error_m = 0.0, home_error_deg = 0.0;          // home-base fix against truth
   double final_error_m = 0.0, final_error_deg = 0.0;        // corrected, at the fix
   double ate_rmse_m = 0.0, ate_max_m = 0.0, heading_rmse_deg = 0.0;
+  double ate_scale_aligned_m = 0.0;  // ATE once a uniform distance scale is taken out
   double drift_percent = 0.0, drift_deg_per_m = 0.0;
   double wall_recall = 0.0, false_occupied_rate = 0.0;
   double correct_ms = 0.0, rebuild_ms = 0.0;
   OdometryBias bias;
   int iterations = 0;
-  int closures = 0;  // loop closures used (pose-graph)
 };
 
 struct DriftBenchResult {

@@ -7,6 +7,7 @@
 #include <ceres/solver.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 
@@ -296,22 +297,54 @@ CorrectionResult correctTraverse(const TraverseLog& log, const PoseObservation& 
       break;
     }
     case CorrectionModel::kHeadingDrift: {
-      double bias[3] = {0.0, 0.0, 0.0};
-      ceres::Problem problem;
-      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<EndResidual, 3, 3>(new EndResidual(
-                                   &steps, target, home.sigma_xy, home.sigma_theta)),
-                               nullptr, bias);
-      problem.AddResidualBlock(
-          new ceres::AutoDiffCostFunction<BiasPrior, 3, 3>(new BiasPrior(config.odometry)), nullptr,
-          bias);
-      // Only the heading errors: on a loop that comes home the distance scale hardly moves
-      // the end, so fitting it would soak up noise (it stays zero).
-      problem.SetManifold(bias, new ceres::SubsetManifold(3, {2}));
-      ceres::Solver::Summary summary;
-      ceres::Solve(solverOptions(config.max_iterations), &problem, &summary);
-      result.iterations = static_cast<int>(summary.iterations.size());
-      result.final_cost = summary.final_cost;
-      result.bias = {bias[0], bias[1], bias[2]};
+      // The heading error at home fixes b * metres + k * radians turned; the position error
+      // splits it. Start from both ends of that line (all drift, all turn scale) and keep
+      // the better fit: the problem is not convex and a start at zero can settle wrongly.
+      double metres = 0.0, turned = 0.0;
+      for (const Step& st : steps) {
+        metres += std::abs(st.ds);
+        turned += st.dtheta;
+      }
+      const double heading_error = odo_heading - target.theta;  // odometry minus truth
+      // The end is matched to within what the random odometry errors allow (they are left
+      // to the uniform spread below), not to the home base's precision: else the two
+      // systematic terms bend to absorb noise. (Only the random walk along the path counts
+      // here; random heading errors would allow so much that the split goes unobserved.)
+      const OdometryErrorModel& m = config.odometry;
+      double turned_abs = 0.0;
+      for (const Step& st : steps) turned_abs += std::abs(st.dtheta);
+      const double var_theta = m.angular_per_sqrt_rad * m.angular_per_sqrt_rad * turned_abs +
+                               m.heading_per_sqrt_m * m.heading_per_sqrt_m * metres;
+      const double end_sxy = std::sqrt(home.sigma_xy * home.sigma_xy +
+                                       m.linear_per_sqrt_m * m.linear_per_sqrt_m * metres);
+      const double end_sth = std::sqrt(home.sigma_theta * home.sigma_theta + var_theta);
+      std::vector<std::array<double, 3>> starts = {{0.0, 0.0, 0.0}};
+      if (metres > 1e-6) starts.push_back({heading_error / metres, 0.0, 0.0});
+      if (std::abs(turned) > 1e-6) starts.push_back({0.0, heading_error / turned, 0.0});
+      double best_cost = 1e300;
+      for (const std::array<double, 3>& start : starts) {
+        double bias[3] = {start[0], start[1], start[2]};
+        ceres::Problem problem;
+        problem.AddResidualBlock(new ceres::AutoDiffCostFunction<EndResidual, 3, 3>(
+                                     new EndResidual(&steps, target, end_sxy, end_sth)),
+                                 nullptr, bias);
+        problem.AddResidualBlock(
+            new ceres::AutoDiffCostFunction<BiasPrior, 3, 3>(new BiasPrior(config.odometry)),
+            nullptr, bias);
+        // Only the heading errors: on a loop that comes home the distance scale hardly moves
+        // the end, so fitting it would soak up noise (it stays zero).
+        problem.SetManifold(bias, new ceres::SubsetManifold(3, {2}));
+        ceres::Solver::Summary summary;
+        ceres::Solve(solverOptions(config.max_iterations), &problem, &summary);
+        result.iterations += static_cast<int>(summary.iterations.size());
+        if (summary.final_cost < best_cost) {
+          best_cost = summary.final_cost;
+          result.bias = {bias[0], bias[1], bias[2]};
+        }
+      }
+      result.final_cost = best_cost;
+      const double bias[3] = {result.bias.heading_drift, result.bias.turn_scale,
+                              result.bias.distance_scale};
       rel = dead_reckon(steps, bias);
       spreadUniformly(rel, target);  // what the priors and the noise leave
       break;

@@ -268,36 +268,4 @@ HomeBaseProtocol runHomeBaseProtocol(const TraverseLog& log, const HomeBase& nom
   return p;
 }
 
-std::vector<PoseObservation> referenceClosures(const TraverseLog& log,
-                                               const std::vector<Pose2>& estimate,
-                                               const OccupancyGrid& reference, size_t until,
-                                               const HomeReturnConfig& config) {
-  config.validate();
-  std::vector<PoseObservation> out;
-  if (log.entries.empty() || estimate.size() != log.entries.size()) return out;
-  const Pose2 start = log.entries.front().scan.odometry;
-  // Not the reference's own entries.
-  const std::vector<size_t> own = referenceEntries(log, config);
-  const size_t skip = own.empty() ? 0 : own.back() + 1;
-  const size_t end = std::min(until, log.entries.size() - 1);
-  for (size_t i = std::max<size_t>(skip, 1); i < end; ++i) {
-    const Pose2& e = estimate[i];
-    if (std::hypot(e.x - start.x, e.y - start.y) > config.closure_radius ||
-        std::abs(wrapAngle(e.theta - start.theta)) > config.closure_half_angle)
-      continue;
-    const std::vector<const RadialMap*> scans = {&log.entries[i - 1].scan, &log.entries[i].scan,
-                                                 &log.entries[i + 1].scan};
-    const Pose2 guess = e * log.entries[i].scan.odometry.inverse();
-    const AlignmentResult a = alignScans(scans, reference, guess, config.alignment);
-    if (!a.ok) continue;
-    PoseObservation o;
-    o.entry = i;
-    o.pose = a.correction * log.entries[i].scan.odometry;
-    o.sigma_xy = config.refined_sigma_xy;
-    o.sigma_theta = config.refined_sigma_theta;
-    out.push_back(o);
-  }
-  return out;
-}
-
 }  // namespace coopmap

@@ -28,8 +28,6 @@ struct HomeReturnConfig {
   double refined_sigma_theta = 0.0035;  // rad
   double search_radius = 1.0;           // m: without a corner fix, the robot is searched for
                                         // within this of the start (it believes it is home)
-  double closure_radius = 1.0;          // m: closures are tried within this of the start
-  double closure_half_angle = 0.8;      // rad: and looking within this of the start heading
   double max_separation_error = 0.1;    // m, observed vs registered corner separation
   CornerConfig corners;                 // arm_cells is set from the home base's arm length
   AlignmentConfig alignment;            // dense refinement against the reference map
@@ -99,15 +97,5 @@ struct HomeBaseProtocol {
 };
 HomeBaseProtocol runHomeBaseProtocol(const TraverseLog& log, const HomeBase& nominal,
                                      double arm_length, const HomeReturnConfig& config = {});
-
-// Loop closures against the reference map: every entry whose estimated pose (`estimate`,
-// map frame, one per entry, e.g. a first correction) puts the robot back near the start
-// and looking the way the reference was taken is aligned, with its neighbours, to the
-// reference; each success observes that entry's pose. Entries of the reference itself and
-// from `until` on are skipped.
-std::vector<PoseObservation> referenceClosures(const TraverseLog& log,
-                                               const std::vector<Pose2>& estimate,
-                                               const OccupancyGrid& reference, size_t until,
-                                               const HomeReturnConfig& config = {});
 
 }  // namespace coopmap

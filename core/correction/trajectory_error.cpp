@@ -25,6 +25,22 @@ TrajectoryError trajectoryError(const std::vector<Pose2>& estimate, const std::v
     sq_heading += h * h;
   }
   e.ate_rmse_m = std::sqrt(sq / n);
+  // Least-squares scale about the first pose: s = sum(a.b) / sum(a.a).
+  double ab = 0.0, aa = 0.0;
+  for (size_t i = 0; i < n; ++i) {
+    const Eigen::Vector2d a = estimate[i].translation() - estimate[0].translation();
+    const Eigen::Vector2d b = truth[i].translation() - estimate[0].translation();
+    ab += a.dot(b);
+    aa += a.dot(a);
+  }
+  e.scale = aa > 0.0 ? ab / aa : 1.0;
+  double sq_scaled = 0.0;
+  for (size_t i = 0; i < n; ++i) {
+    const Eigen::Vector2d p = estimate[0].translation() +
+                              e.scale * (estimate[i].translation() - estimate[0].translation());
+    sq_scaled += (p - truth[i].translation()).squaredNorm();
+  }
+  e.ate_scale_aligned_m = std::sqrt(sq_scaled / n);
   e.heading_rmse_deg = std::sqrt(sq_heading / n);
 
   std::vector<double> arc(n, 0.0);

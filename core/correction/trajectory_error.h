@@ -10,8 +10,12 @@
 namespace coopmap {
 
 struct TrajectoryError {
-  double ate_rmse_m = 0.0;        // RMS position error over all poses (m)
-  double ate_max_m = 0.0;         // worst position error (m)
+  double ate_rmse_m = 0.0;  // RMS position error over all poses (m)
+  double ate_max_m = 0.0;   // worst position error (m)
+  // ATE after the best uniform scaling of the estimate about its first pose: what is left
+  // once a distance-scale error (unobservable on a loop that closes at home) is taken out.
+  double ate_scale_aligned_m = 0.0;
+  double scale = 1.0;             // that scaling
   double heading_rmse_deg = 0.0;  // RMS heading error (deg)
   double drift_percent = 0.0;     // mean translational error per sub-path length (%)
   double drift_deg_per_m = 0.0;   // mean rotational error per metre of sub-path
