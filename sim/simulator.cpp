@@ -91,9 +91,8 @@ TrinocularFrame Simulator::capture(int robot, cv::Mat* truth_depth) {
   f.stamp = time();
   f.odometry = odometry(robot);
   const std::vector<SolidBox> boxes = world_.doorsClosedAt(time());
-  renderer_->render(cameraPose(robot, 0), others, boxes, f.reference, truth_depth);
-  renderer_->render(cameraPose(robot, 1), others, boxes, f.horizontal);
-  renderer_->render(cameraPose(robot, 2), others, boxes, f.vertical);
+  renderer_->renderViews({cameraPose(robot, 0), cameraPose(robot, 1), cameraPose(robot, 2)}, others,
+                         boxes, {&f.reference, &f.horizontal, &f.vertical}, truth_depth);
   std::vector<CameraModel>& cams = robots_.at(robot).cameras;
   cams[0].apply(f.reference);
   cams[1].apply(f.horizontal);

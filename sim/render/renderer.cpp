@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <map>
 #include <stdexcept>
+#include <string>
 
 #include <opencv2/core.hpp>
 
@@ -125,8 +126,9 @@ Renderer::Renderer(const World& world, const CameraIntrinsics& k, double near_m,
   im.far_m = far_m;
   im.context = OSMesaCreateContextExt(OSMESA_RGBA, 24, 0, 0, nullptr);
   if (!im.context) throw std::runtime_error("renderer: cannot create an OSMesa context");
-  im.buffer.resize(static_cast<size_t>(k.width) * k.height * 4);
-  if (!OSMesaMakeCurrent(im.context, im.buffer.data(), GL_UNSIGNED_BYTE, k.width, k.height))
+  im.buffer.resize(static_cast<size_t>(k.width) * kMaxViews * k.height * 4);
+  if (!OSMesaMakeCurrent(im.context, im.buffer.data(), GL_UNSIGNED_BYTE, k.width * kMaxViews,
+                         k.height))
     throw std::runtime_error("renderer: OSMesaMakeCurrent failed");
   // Trilinear mipmapping only: anisotropic filtering triples llvmpipe's render time and
   // did not change the maps (measured on worlds/lab.yaml).
@@ -167,7 +169,9 @@ Renderer::Renderer(const World& world, const CameraIntrinsics& k, double near_m,
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glEnable(GL_CULL_FACE);
-  glDisable(GL_CULL_FACE);  // thin boxes are seen from both sides; keep it simple and exact
+  // Back faces are culled: every solid is closed and its faces wind counter-clockwise seen
+  // from outside (the robot never looks out of a solid), a third less to rasterize.
+  glCullFace(GL_BACK);
   glEnable(GL_TEXTURE_2D);
   glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_MODULATE);
   glEnableClientState(GL_VERTEX_ARRAY);
@@ -183,9 +187,21 @@ Renderer::~Renderer() {
 
 void Renderer::render(const Eigen::Isometry3d& X_WC, const std::vector<DynamicCylinder>& others,
                       const std::vector<SolidBox>& boxes, cv::Mat& grey, cv::Mat* depth) {
+  renderViews({X_WC}, others, boxes, {&grey}, depth);
+}
+
+void Renderer::renderViews(const std::vector<Eigen::Isometry3d>& X_WCs,
+                           const std::vector<DynamicCylinder>& others,
+                           const std::vector<SolidBox>& boxes, const std::vector<cv::Mat*>& greys,
+                           cv::Mat* first_depth) {
   Impl& im = *impl_;
   const CameraIntrinsics& k = intrinsics_;
-  if (!OSMesaMakeCurrent(im.context, im.buffer.data(), GL_UNSIGNED_BYTE, k.width, k.height))
+  const int views = static_cast<int>(X_WCs.size());
+  if (views < 1 || views > kMaxViews || greys.size() != X_WCs.size())
+    throw std::invalid_argument("renderer: 1.." + std::to_string(kMaxViews) +
+                                " views with one image each expected");
+  if (!OSMesaMakeCurrent(im.context, im.buffer.data(), GL_UNSIGNED_BYTE, k.width * kMaxViews,
+                         k.height))
     throw std::runtime_error("renderer: OSMesaMakeCurrent failed");
   const double n = im.near_m, f = im.far_m, W = k.width, H = k.height;
   // Column-major projection mapping OpenCV intrinsics (pixel centres at integers) to GL.
@@ -200,45 +216,57 @@ void Renderer::render(const Eigen::Isometry3d& X_WC, const std::vector<DynamicCy
   Eigen::Matrix4d flip = Eigen::Matrix4d::Identity();  // OpenCV camera -> GL eye
   flip(1, 1) = -1.0;
   flip(2, 2) = -1.0;
-  const Eigen::Matrix4d V = flip * X_WC.inverse().matrix();
   glMatrixMode(GL_PROJECTION);
   glLoadMatrixd(P.data());
-  glMatrixMode(GL_MODELVIEW);
-  glLoadMatrixd(V.data());
+  glViewport(0, 0, k.width * views, k.height);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  for (const auto& [name, batch] : im.batches) {
-    if (!batch.buffer) continue;
-    glBindTexture(GL_TEXTURE_2D, batch.texture);
-    glBindBuffer(GL_ARRAY_BUFFER, batch.buffer);
-    Impl::draw(nullptr, batch.vertices.size());
-  }
-  glBindBuffer(GL_ARRAY_BUFFER, 0);
-  if (!others.empty()) {
-    im.dynamic_vertices.clear();
-    for (const DynamicCylinder& c : others) addCylinder(im.dynamic_vertices, c, im.dynamic_tile);
-    glBindTexture(GL_TEXTURE_2D, im.dynamic_texture);
-    Impl::draw(im.dynamic_vertices.data(), im.dynamic_vertices.size());
-  }
+  // Moving things are built once for all views.
+  im.dynamic_vertices.clear();
+  for (const DynamicCylinder& c : others) addCylinder(im.dynamic_vertices, c, im.dynamic_tile);
+  const size_t cylinder_vertices = im.dynamic_vertices.size();
+  std::vector<size_t> box_end;  // one past each box's last vertex
   for (const SolidBox& box : boxes) {
-    const Impl::Batch& batch = im.batches.at(box.texture);
-    im.dynamic_vertices.clear();
-    addBox(im.dynamic_vertices, box, batch.tile);
-    glBindTexture(GL_TEXTURE_2D, batch.texture);
-    Impl::draw(im.dynamic_vertices.data(), im.dynamic_vertices.size());
+    addBox(im.dynamic_vertices, box, im.batches.at(box.texture).tile);
+    box_end.push_back(im.dynamic_vertices.size());
+  }
+  for (int v = 0; v < views; ++v) {
+    glViewport(v * k.width, 0, k.width, k.height);
+    const Eigen::Matrix4d V = flip * X_WCs[v].inverse().matrix();
+    glMatrixMode(GL_MODELVIEW);
+    glLoadMatrixd(V.data());
+    for (const auto& [name, batch] : im.batches) {
+      if (!batch.buffer) continue;
+      glBindTexture(GL_TEXTURE_2D, batch.texture);
+      glBindBuffer(GL_ARRAY_BUFFER, batch.buffer);
+      Impl::draw(nullptr, batch.vertices.size());
+    }
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    if (cylinder_vertices > 0) {
+      glBindTexture(GL_TEXTURE_2D, im.dynamic_texture);
+      Impl::draw(im.dynamic_vertices.data(), cylinder_vertices);
+    }
+    size_t at = cylinder_vertices;
+    for (size_t b = 0; b < boxes.size(); ++b) {
+      glBindTexture(GL_TEXTURE_2D, im.batches.at(boxes[b].texture).texture);
+      Impl::draw(im.dynamic_vertices.data() + at, box_end[b] - at);
+      at = box_end[b];
+    }
   }
   glFinish();
 
-  im.red.create(k.height, k.width, CV_8UC1);
+  im.red.create(k.height, k.width * views, CV_8UC1);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadPixels(0, 0, k.width, k.height, GL_RED, GL_UNSIGNED_BYTE, im.red.data);
-  cv::flip(im.red, grey, 0);
-  if (depth) {
+  glReadPixels(0, 0, k.width * views, k.height, GL_RED, GL_UNSIGNED_BYTE, im.red.data);
+  for (int v = 0; v < views; ++v)
+    cv::flip(im.red(cv::Rect(v * k.width, 0, k.width, k.height)), *greys[v], 0);
+  if (first_depth) {
     im.depth_buffer.resize(static_cast<size_t>(k.width) * k.height);
     glReadPixels(0, 0, k.width, k.height, GL_DEPTH_COMPONENT, GL_FLOAT, im.depth_buffer.data());
-    depth->create(k.height, k.width, CV_32F);
+    cv::Mat& depth = *first_depth;
+    depth.create(k.height, k.width, CV_32F);
     for (int row = 0; row < k.height; ++row) {
       const float* src = im.depth_buffer.data() + static_cast<size_t>(k.height - 1 - row) * k.width;
-      float* dst = depth->ptr<float>(row);
+      float* dst = depth.ptr<float>(row);
       for (int x = 0; x < k.width; ++x) {
         const double d = src[x];
         if (d >= 1.0) {

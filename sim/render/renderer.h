@@ -36,6 +36,13 @@ class Renderer {
   // as cylinders, `boxes` (doors now closed) with their textures.
   void render(const Eigen::Isometry3d& X_WC, const std::vector<DynamicCylinder>& others,
               const std::vector<SolidBox>& boxes, cv::Mat& grey, cv::Mat* depth = nullptr);
+  // Renders up to kMaxViews cameras in one pass: side by side in one framebuffer, one
+  // flush and one read-back of the grey channel (and of the first view's depth, if asked).
+  // Images are the same as rendering each view alone.
+  static constexpr int kMaxViews = 3;
+  void renderViews(const std::vector<Eigen::Isometry3d>& X_WCs,
+                   const std::vector<DynamicCylinder>& others, const std::vector<SolidBox>& boxes,
+                   const std::vector<cv::Mat*>& greys, cv::Mat* first_depth = nullptr);
 
   const CameraIntrinsics& intrinsics() const { return intrinsics_; }
 
