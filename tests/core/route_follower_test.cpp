@@ -50,6 +50,21 @@ TEST(RouteFollowerTest, SpinTurnsAFullCircle) {
   EXPECT_NEAR(t.total_rotation, 2 * M_PI, 0.1);
 }
 
+TEST(RouteFollowerTest, WaitsThenSpins) {
+  Waypoint home;
+  home.spin = true;
+  home.wait = 3.0;
+  RouteFollower f({home}, RouteConfig{});
+  // Standing still until t = 3 s, whatever the pose.
+  for (double t = 0.0; t < 2.95; t += 0.05) {
+    const MotionCommand c = f.update(Pose2(), t);
+    ASSERT_EQ(c.linear, 0.0) << "t " << t;
+    ASSERT_EQ(c.angular, 0.0) << "t " << t;
+  }
+  EXPECT_FALSE(f.done());
+  EXPECT_GT(f.update(Pose2(), 3.0).angular, 0.0);  // then the spin begins
+}
+
 TEST(RouteFollowerTest, EmptyRouteStops) {
   RouteFollower f({}, RouteConfig{});
   EXPECT_TRUE(f.done());

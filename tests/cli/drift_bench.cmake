@@ -1,0 +1,61 @@
+# `coopmap bench drift` writes the files the issue names with the columns it names, and
+# `coopmap traverse` reports a corrupt traverse log with the file, record and offset.
+file(REMOVE_RECURSE "${WORK_DIR}")
+file(MAKE_DIRECTORY "${WORK_DIR}")
+execute_process(COMMAND "${COOPMAP}" bench drift --world "${SOURCE_DIR}/worlds/lab.yaml"
+                        --seeds 1 --out "${WORK_DIR}/drift" --models none heading-drift --quiet
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "coopmap bench drift failed (${rc}):\n${out}${err}")
+endif()
+file(STRINGS "${WORK_DIR}/drift/drift.csv" rows)
+list(GET rows 0 header)
+foreach(column seed model path_length_m odometry_error_m odometry_error_deg ate_rmse_m
+               wall_recall false_occupied_rate correct_ms)
+  if(NOT header MATCHES "(^|,)${column}(,|$)")
+    message(FATAL_ERROR "drift.csv lacks the column ${column}: ${header}")
+  endif()
+endforeach()
+list(LENGTH rows n)
+if(NOT n EQUAL 4)  # header, none, heading-drift, ground-truth
+  message(FATAL_ERROR "drift.csv: expected 3 rows, got:\n${rows}")
+endif()
+foreach(f drift.md seeds/1/maps.png seeds/1/trajectory_groundtruth.tum
+          seeds/1/trajectory_odometry.tum seeds/1/trajectory_heading-drift.tum)
+  if(NOT EXISTS "${WORK_DIR}/drift/${f}")
+    message(FATAL_ERROR "coopmap bench drift did not write ${f}")
+  endif()
+endforeach()
+if(NOT out MATCHES "\\| heading-drift \\|")
+  message(FATAL_ERROR "the summary table is missing:\n${out}")
+endif()
+
+# A run's traverse log, rebuilt; then cut short and rejected clearly.
+execute_process(COMMAND "${COOPMAP}" run "${SOURCE_DIR}/worlds/lab.yaml" --robots 1
+                        --duration 4 --out "${WORK_DIR}/run" --quiet
+                RESULT_VARIABLE rc ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "coopmap run failed:\n${err}")
+endif()
+set(log "${WORK_DIR}/run/traverse_jose.traverse")
+execute_process(COMMAND "${COOPMAP}" traverse "${log}" --out "${WORK_DIR}/t"
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0 OR NOT out MATCHES "jose: [0-9]+ entries" OR NOT EXISTS "${WORK_DIR}/t/map.pgm")
+  message(FATAL_ERROR "coopmap traverse failed on a good log (${rc}):\n${out}${err}")
+endif()
+execute_process(COMMAND "${CMAKE_COMMAND}" -E copy "${log}" "${WORK_DIR}/cut.traverse")
+file(SIZE "${log}" size)
+math(EXPR cut_size "${size} - 100")
+execute_process(COMMAND truncate -s ${cut_size} "${WORK_DIR}/cut.traverse" RESULT_VARIABLE trc)
+if(NOT trc EQUAL 0)
+  message(FATAL_ERROR "test setup: truncate failed")
+endif()
+execute_process(COMMAND "${COOPMAP}" traverse "${WORK_DIR}/cut.traverse" --out "${WORK_DIR}/t2"
+                RESULT_VARIABLE rc ERROR_VARIABLE err)
+if(rc EQUAL 0 OR NOT err MATCHES "cut\\.traverse: record [0-9]+ at byte [0-9]+: truncated")
+  message(FATAL_ERROR "a truncated traverse log was not reported clearly (${rc}):\n${err}")
+endif()
+if(EXISTS "${WORK_DIR}/t2")
+  message(FATAL_ERROR "coopmap traverse wrote outputs for a corrupt log")
+endif()
+message(STATUS "drift benchmark outputs and traverse log errors are as documented")
