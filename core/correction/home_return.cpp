@@ -1,5 +1,6 @@
 #include "core/correction/home_return.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -189,49 +190,71 @@ HomeReturn localizeFromLog(const TraverseLog& log, const HomeBase& home, double 
   }
 
   // 2. Better: align the scans facing the home base to the reference map of the start.
-  // Without a corner fix, the robot is at least back at the home base: try every heading
-  // with the turn's centre on the start position, keep the best.
+  // Without a corner fix, the robot is at least back at the home base: every heading with
+  // the turn's centre near the start position is scored, and the best few are aligned.
   if (reference) {
     const ScanAligner aligner(*reference, config.alignment);
-    Pose2 guess = fix.correction;
-    if (fix.status != HomeBaseStatus::kOk) {
-      // The robot believes it is home: search headings in 2 degree steps and positions in
-      // 10 cm steps within search_radius of the start, scoring a subsample of the points.
+    std::vector<Pose2> guesses;
+    if (fix.status == HomeBaseStatus::kOk) {
+      guesses.push_back(fix.correction);
+    } else {
+      // The robot believes it is home: headings in 2 degree steps and positions in 10 cm
+      // steps within search_radius of the start, scoring a subsample of the points; the
+      // best position per heading, then the best headings at least 10 degrees apart.
       std::vector<const RadialMap*> all;
       for (size_t i : turn) all.push_back(&log.entries[i].scan);
       const std::vector<Eigen::Vector2d> pts = aligner.obstaclePoints(all, 8);
       const Pose2 start = log.entries.front().scan.odometry;
       const int steps = static_cast<int>(std::floor(config.search_radius / 0.1));
-      double best = -1.0;
+      std::vector<std::pair<double, Pose2>> per_heading;
       for (int k = 0; k < 180; ++k) {
         const double heading = wrapAngle(at_turn.theta + k * M_PI / 90.0);
+        std::pair<double, Pose2> best{-1.0, Pose2()};
         for (int i = -steps; i <= steps; ++i)
           for (int j = -steps; j <= steps; ++j) {
             if (std::hypot(i, j) > steps) continue;
             const Pose2 g =
                 Pose2(start.x + 0.1 * i, start.y + 0.1 * j, heading) * at_turn.inverse();
             const double sc = aligner.score(pts, g);
-            if (sc > best) {
-              best = sc;
-              guess = g;
-            }
+            if (sc > best.first) best = {sc, g};
           }
+        per_heading.push_back(best);
       }
-      const Pose2 to_odometry = guess.inverse();
-      facing = entriesFacing(log, turn, to_odometry * home_mid, config.facing_half_angle);
-      entry = facing.empty() ? turn.back() : facing[facing.size() / 2];
+      std::sort(per_heading.begin(), per_heading.end(),
+                [](const auto& a, const auto& b) { return a.first > b.first; });
+      for (const auto& [sc, g] : per_heading) {
+        bool distinct = true;
+        for (const Pose2& h : guesses)
+          distinct = distinct && std::abs(wrapAngle(g.theta - h.theta)) > 10.0 * M_PI / 180.0;
+        if (distinct) guesses.push_back(g);
+        if (guesses.size() >= 5) break;
+      }
     }
-    std::vector<const RadialMap*> scans;
-    for (size_t i : facing.size() >= 3 ? facing : turn) scans.push_back(&log.entries[i].scan);
-    out.alignment = aligner.align(scans, guess);
-    if (out.alignment.ok) {
-      // Again with a tighter robust scale: points near but off the reference's walls
-      // (another side of an obstacle, a stereo outlier) stop pulling.
-      AlignmentConfig tight = config.alignment;
-      tight.robust_scale = std::max(1.0, 0.5 * tight.robust_scale);
-      const AlignmentResult second =
-          ScanAligner(*reference, tight).align(scans, out.alignment.correction);
-      if (second.ok) out.alignment = second;
+    for (const Pose2& guess : guesses) {
+      std::vector<size_t> view = facing;
+      size_t view_entry = entry;
+      if (fix.status != HomeBaseStatus::kOk) {
+        view = entriesFacing(log, turn, guess.inverse() * home_mid, config.facing_half_angle);
+        view_entry = view.empty() ? turn.back() : view[view.size() / 2];
+      }
+      std::vector<const RadialMap*> scans;
+      for (size_t i : view.size() >= 3 ? view : turn) scans.push_back(&log.entries[i].scan);
+      AlignmentResult a = aligner.align(scans, guess);
+      if (a.ok) {
+        // Again with a tighter robust scale: points near but off the reference's walls
+        // (another side of an obstacle, a stereo outlier) stop pulling.
+        AlignmentConfig tight = config.alignment;
+        tight.robust_scale = std::max(1.0, 0.5 * tight.robust_scale);
+        const AlignmentResult second = ScanAligner(*reference, tight).align(scans, a.correction);
+        if (second.ok) a = second;
+      }
+      if (&guess == &guesses.front()) out.alignment = a;  // the first reason if all fail
+      if (a.ok) {
+        out.alignment = a;
+        facing = view;
+        entry = view_entry;
+        break;
+      }
     }
     if (out.alignment.ok) {
       out.refined = true;
