@@ -1,57 +1,23 @@
 #include "core/correction/traverse_log.h"
 
-#include <zlib.h>
-
-#include <bit>
 #include <cstring>
 #include <stdexcept>
 
 #include "core/io/atomic_file.h"
+#include "core/io/binary_io.h"
 
 namespace coopmap {
 
 namespace {
-
-static_assert(std::endian::native == std::endian::little,
-              "the traverse log writer assumes a little-endian host");
 
 constexpr char kMagic[8] = {'C', 'M', 'T', 'R', 'A', 'V', 'L', 'G'};
 constexpr uint32_t kRecordMagic = 0x4E414353;  // "SCAN" read as little-endian bytes
 constexpr size_t kReadingBytes = 4 * 8 + 1;
 constexpr size_t kFixedPayloadBytes = 4 * 8 + 1 + 3 * 8 + 4;
 
-uint32_t crc(const char* data, size_t n) {
-  return static_cast<uint32_t>(
-      crc32(0L, reinterpret_cast<const Bytef*>(data), static_cast<uInt>(n)));
-}
-
-class Writer {
- public:
-  template <typename T>
-  void put(T v) {
-    char b[sizeof(T)];
-    std::memcpy(b, &v, sizeof(T));
-    out.append(b, sizeof(T));
-  }
-  std::string out;
-};
-
-class Reader {
- public:
-  Reader(const std::string& bytes, size_t begin, size_t end) : b_(bytes), pos_(begin), end_(end) {}
-  template <typename T>
-  T get() {
-    T v;
-    std::memcpy(&v, b_.data() + pos_, sizeof(T));
-    pos_ += sizeof(T);
-    return v;
-  }
-  size_t left() const { return end_ - pos_; }
-
- private:
-  const std::string& b_;
-  size_t pos_, end_;
-};
+uint32_t crc(const char* data, size_t n) { return crc32Of(data, n); }
+using Writer = ByteWriter;
+using Reader = ByteReader;
 
 [[noreturn]] void fail(const std::string& source, const std::string& what) {
   throw std::runtime_error(source + ": " + what);

@@ -45,6 +45,15 @@ CellState OccupancyGrid::state(int ix, int iy) const {
   return CellState::kUnknown;
 }
 
+void OccupancyGrid::assign(const std::vector<int16_t>& log_odds, const std::vector<uint8_t>& seen) {
+  if (log_odds.size() != log_odds_.cells.size() || seen.size() != seen_.cells.size())
+    throw std::invalid_argument("OccupancyGrid::assign: " + std::to_string(log_odds.size()) +
+                                " and " + std::to_string(seen.size()) + " cells for a grid of " +
+                                std::to_string(log_odds_.cells.size()));
+  log_odds_.cells = log_odds;
+  seen_.cells = seen;
+}
+
 double OccupancyGrid::probability(int ix, int iy) const {
   return 1.0 / (1.0 + std::exp(-logOdds(ix, iy) / 100.0));
 }

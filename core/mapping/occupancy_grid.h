@@ -44,6 +44,9 @@ class OccupancyGrid {
   const OccupancyConfig& config() const { return config_; }
   // Occupancy probability of a cell (0.5 when unseen).
   double probability(int ix, int iy) const;
+  // Replaces both layers (e.g. restoring a saved map); throws std::invalid_argument when
+  // the sizes differ from the grid's.
+  void assign(const std::vector<int16_t>& log_odds, const std::vector<uint8_t>& seen);
 
  private:
   void touch(size_t cell, int delta, bool observed);

@@ -1,0 +1,206 @@
+#include "core/sharing/shared_map.h"
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <stdexcept>
+
+#include "core/io/atomic_file.h"
+#include "core/io/binary_io.h"
+
+namespace coopmap {
+
+namespace {
+
+constexpr char kMagic[8] = {'C', 'M', 'S', 'H', 'A', 'R', 'E', 'M'};
+constexpr uint32_t kFormatVersion = 1;
+
+// Why a scan cannot be applied, or empty.
+std::string checkScan(const PostedScan& s, const MapLimits& limits, size_t index) {
+  const std::string where = "scan " + std::to_string(index) + ": ";
+  const Pose2& p = s.pose;
+  if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.theta))
+    return where + "pose is not finite";
+  const Eigen::Vector2d lo = limits.origin;
+  const Eigen::Vector2d hi = lo + Eigen::Vector2d(limits.width, limits.height) * limits.resolution;
+  if (p.x < lo.x() || p.y < lo.y() || p.x > hi.x() || p.y > hi.y())
+    return where + "pose (" + std::to_string(p.x) + ", " + std::to_string(p.y) +
+           ") is outside the shared map";
+  for (const RadialReading& r : s.scan.readings)
+    if (!std::isfinite(r.bearing) || !std::isfinite(r.range) || !std::isfinite(r.sigma) ||
+        r.range < 0.0 || r.sigma < 0.0)
+      return where + "a reading is not finite or negative";
+  return "";
+}
+
+}  // namespace
+
+const char* toString(PostStatus s) {
+  switch (s) {
+    case PostStatus::kAccepted:
+      return "accepted";
+    case PostStatus::kDuplicate:
+      return "duplicate";
+    case PostStatus::kRejected:
+      return "rejected";
+  }
+  return "?";
+}
+
+LocalSharedMap::LocalSharedMap(const MapLimits& limits, const OccupancyConfig& config,
+                               const std::string& folder)
+    : grid_(limits, config) {
+  if (folder.empty()) return;
+  std::filesystem::create_directories(folder);
+  file_ = folder + "/shared_map.bin";
+  if (std::filesystem::exists(file_)) load(file_);
+}
+
+std::string LocalSharedMap::encodeSnapshot(const OccupancyGrid& grid, uint64_t version,
+                                           const std::map<std::string, uint64_t>& last_posts) {
+  ByteWriter w;
+  w.out.append(kMagic, sizeof(kMagic));
+  w.put<uint32_t>(kFormatVersion);
+  const MapLimits& l = grid.limits();
+  w.put(l.resolution);
+  w.put(l.origin.x());
+  w.put(l.origin.y());
+  w.put<int32_t>(l.width);
+  w.put<int32_t>(l.height);
+  w.put<uint64_t>(version);
+  w.put<uint32_t>(static_cast<uint32_t>(last_posts.size()));
+  for (const auto& [robot, id] : last_posts) {
+    w.put<uint32_t>(static_cast<uint32_t>(robot.size()));
+    w.putBytes(robot);
+    w.put<uint64_t>(id);
+  }
+  const auto& lo = grid.logOddsGrid().cells;
+  const auto& seen = grid.seenGrid().cells;
+  w.out.append(reinterpret_cast<const char*>(lo.data()), lo.size() * sizeof(int16_t));
+  w.out.append(reinterpret_cast<const char*>(seen.data()), seen.size());
+  w.put<uint32_t>(crc32Of(w.out.data(), w.out.size()));
+  return w.out;
+}
+
+void LocalSharedMap::load(const std::string& path) {
+  const std::string bytes = readFile(path);
+  auto fail = [&](const std::string& what) { throw std::runtime_error(path + ": " + what); };
+  const size_t header = sizeof(kMagic) + 4 + 3 * 8 + 2 * 4 + 8 + 4;
+  if (bytes.size() < header + 4 || std::memcmp(bytes.data(), kMagic, sizeof(kMagic)) != 0)
+    fail("not a coopmap shared map (expected magic 'CMSHAREM' at byte 0)");
+  {
+    ByteReader c(bytes, bytes.size() - 4, bytes.size());
+    if (c.get<uint32_t>() != crc32Of(bytes.data(), bytes.size() - 4))
+      fail("checksum mismatch (the file is corrupt or truncated)");
+  }
+  ByteReader r(bytes, sizeof(kMagic), bytes.size() - 4);
+  const uint32_t format = r.get<uint32_t>();
+  if (format != kFormatVersion)
+    fail("shared map format version " + std::to_string(format) + " (this build reads " +
+         std::to_string(kFormatVersion) + ")");
+  const double resolution = r.get<double>();
+  const double ox = r.get<double>(), oy = r.get<double>();
+  const int32_t width = r.get<int32_t>(), height = r.get<int32_t>();
+  const MapLimits& l = grid_.limits();
+  if (resolution != l.resolution || ox != l.origin.x() || oy != l.origin.y() || width != l.width ||
+      height != l.height)
+    fail("made for other map limits (" + std::to_string(width) + " x " + std::to_string(height) +
+         " cells of " + std::to_string(resolution) + " m)");
+  const uint64_t version = r.get<uint64_t>();
+  const uint32_t robots = r.get<uint32_t>();
+  std::map<std::string, uint64_t> last;
+  for (uint32_t i = 0; i < robots; ++i) {
+    if (r.left() < 4) fail("truncated robot list");
+    const uint32_t n = r.get<uint32_t>();
+    if (r.left() < static_cast<size_t>(n) + 8) fail("truncated robot list");
+    std::string name(n, '\0');
+    r.getBytes(name.data(), n);
+    last[name] = r.get<uint64_t>();
+  }
+  const size_t cells = l.size();
+  if (r.left() != cells * 3)
+    fail("expected " + std::to_string(cells * 3) + " bytes of map layers, found " +
+         std::to_string(r.left()));
+  std::vector<int16_t> lo(cells);
+  std::vector<uint8_t> seen(cells);
+  r.getBytes(lo.data(), cells * sizeof(int16_t));
+  r.getBytes(seen.data(), cells);
+  grid_.assign(lo, seen);
+  version_ = version;
+  last_post_ = std::move(last);
+}
+
+PostResult LocalSharedMap::post(const MapPost& post) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  PostResult result;
+  result.version = version_;
+  if (post.robot.empty()) {
+    result.reason = "the post names no robot";
+    return result;
+  }
+  const auto last = last_post_.find(post.robot);
+  if (last != last_post_.end() && post.post_id <= last->second) {
+    result.status = PostStatus::kDuplicate;
+    result.reason = "post " + std::to_string(post.post_id) + " of " + post.robot +
+                    " was already applied (last " + std::to_string(last->second) + ")";
+    return result;
+  }
+  // Whole or not at all: every scan is checked before any is applied.
+  for (size_t i = 0; i < post.scans.size(); ++i) {
+    const std::string why = checkScan(post.scans[i], grid_.limits(), i);
+    if (!why.empty()) {
+      result.reason = why;
+      return result;
+    }
+  }
+  OccupancyGrid next = grid_;
+  for (const PostedScan& s : post.scans) next.insert(s.scan, s.pose);
+  std::map<std::string, uint64_t> next_last = last_post_;
+  next_last[post.robot] = post.post_id;
+  // Durable before acknowledged.
+  if (!file_.empty()) writeFileAtomic(file_, encodeSnapshot(next, version_ + 1, next_last));
+  grid_ = std::move(next);
+  last_post_ = std::move(next_last);
+  ++version_;
+  result.status = PostStatus::kAccepted;
+  result.version = version_;
+  return result;
+}
+
+SharedMapSnapshot LocalSharedMap::snapshot() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return {version_, grid_.logOddsGrid().cells, grid_.seenGrid().cells};
+}
+
+OccupancyGrid LocalSharedMap::grid() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return grid_;
+}
+
+uint64_t LocalSharedMap::version() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return version_;
+}
+
+MapPost correctedPost(const TraverseLog& log, const std::vector<Pose2>& corrected,
+                      uint64_t post_id) {
+  if (corrected.size() != log.entries.size())
+    throw std::invalid_argument("correctedPost: " + std::to_string(corrected.size()) +
+                                " poses for a log of " + std::to_string(log.entries.size()));
+  MapPost p;
+  p.robot = log.robot;
+  p.post_id = post_id;
+  for (size_t i = 0; i < corrected.size(); ++i)
+    p.scans.push_back({log.entries[i].scan, corrected[i]});
+  return p;
+}
+
+MapPost naivePost(const TraverseLog& log, uint64_t post_id) {
+  MapPost p;
+  p.robot = log.robot;
+  p.post_id = post_id;
+  for (const TraverseEntry& e : log.entries) p.scans.push_back({e.scan, e.scan.odometry});
+  return p;
+}
+
+}  // namespace coopmap

@@ -1,0 +1,105 @@
+// The shared map (section 4 of the paper): robots post radial maps with poses corrected at
+// the home base, and import the common grid. A post is applied whole or not at all, the map
+// is versioned, and with a folder it is persisted atomically before a post is acknowledged,
+// so a crash loses nothing that was acknowledged. `SharedMapService` is the interface a
+// networked service would implement too; `LocalSharedMap` is the in-process one.
+//
+// Snapshot file format, version 1 (little-endian): 8 bytes magic "CMSHAREM", u32 version,
+// f64 resolution, f64 origin x, y, i32 width, height, u64 map version, u32 robot count, per
+// robot (u32 name length, name, u64 last post id), then width*height i16 log-odds and
+// width*height u8 seen flags, then u32 CRC-32 of everything before it.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "core/correction/traverse_log.h"
+#include "core/geometry/pose2.h"
+#include "core/mapping/occupancy_grid.h"
+
+namespace coopmap {
+
+// One radial map at its pose in the shared (map) frame.
+struct PostedScan {
+  RadialMap scan;
+  Pose2 pose;  // X_MR
+};
+
+struct MapPost {
+  std::string robot;
+  uint64_t post_id = 0;  // increasing per robot; a repeated id is a retry, not new data
+  std::vector<PostedScan> scans;
+};
+
+enum class PostStatus { kAccepted, kDuplicate, kRejected };
+const char* toString(PostStatus s);
+
+struct PostResult {
+  PostStatus status = PostStatus::kRejected;
+  uint64_t version = 0;  // the map version after the post
+  std::string reason;    // why a post was rejected
+};
+
+struct SharedMapSnapshot {
+  uint64_t version = 0;
+  std::vector<int16_t> log_odds;  // the grid's layers, row-major over the service's limits
+  std::vector<uint8_t> seen;
+};
+
+class SharedMapService {
+ public:
+  virtual ~SharedMapService() = default;
+  SharedMapService() = default;
+  SharedMapService(const SharedMapService&) = delete;
+  SharedMapService& operator=(const SharedMapService&) = delete;
+
+  // Applies a post whole or not at all; acknowledged (kAccepted) only once it is durable.
+  virtual PostResult post(const MapPost& post) = 0;
+  // The current map.
+  virtual SharedMapSnapshot snapshot() const = 0;
+  // The grid geometry and update rule every robot must use to import the map.
+  virtual const MapLimits& limits() const = 0;
+  virtual const OccupancyConfig& config() const = 0;
+};
+
+// The in-process service; thread-safe. With a non-empty `folder` the map is restored from
+// `folder/shared_map.bin` if present and saved there (temp file + rename) on every post.
+class LocalSharedMap final : public SharedMapService {
+ public:
+  // Throws std::runtime_error naming the file for an unreadable or corrupt snapshot, or one
+  // made for other limits.
+  LocalSharedMap(const MapLimits& limits, const OccupancyConfig& config,
+                 const std::string& folder = "");
+
+  PostResult post(const MapPost& post) override;
+  SharedMapSnapshot snapshot() const override;
+  const MapLimits& limits() const override { return grid_.limits(); }
+  const OccupancyConfig& config() const override { return grid_.config(); }
+  // The current map as a grid (a copy), for metrics and outputs.
+  OccupancyGrid grid() const;
+  uint64_t version() const;
+
+  static std::string encodeSnapshot(const OccupancyGrid& grid, uint64_t version,
+                                    const std::map<std::string, uint64_t>& last_posts);
+
+ private:
+  void load(const std::string& path);
+  mutable std::mutex mutex_;
+  OccupancyGrid grid_;
+  uint64_t version_ = 0;
+  std::map<std::string, uint64_t> last_post_;  // per robot
+  std::string file_;
+};
+
+// A robot's corrected traverse as a post: every entry's radial map at its corrected pose.
+// Throws std::invalid_argument when the pose count differs from the log's.
+MapPost correctedPost(const TraverseLog& log, const std::vector<Pose2>& corrected,
+                      uint64_t post_id);
+// The paper's "simplest form of cooperation": every radial map at its uncorrected odometry
+// pose, as it is taken.
+MapPost naivePost(const TraverseLog& log, uint64_t post_id);
+
+}  // namespace coopmap
