@@ -76,6 +76,7 @@ namespace {
 // visit(cell index, s) with s the distance of the cell centre along the ray, until visit
 // returns false, the ray reaches t_end or leaves the grid. s grows along the walk. With
 // t_start, `origin` is the point at that distance along the ray and s counts from there.
+// The choice of axis at each step, which the CPU cannot predict, is arithmetic.
 template <typename Visit>
 void walkRay(const MapLimits& lim, const Eigen::Vector2d& origin, double dx, double dy,
              double t_end, Visit&& visit, double t_start = 0.0) {
@@ -92,80 +93,24 @@ void walkRay(const MapLimits& lim, const Eigen::Vector2d& origin, double dx, dou
   const Eigen::Vector2d c0 = lim.cellCenter(ix, iy) - origin;
   double s = c0.x() * dx + c0.y() * dy + t_start;
   const double ds_x = step_x * res * dx, ds_y = step_y * res * dy;  // both >= 0
+  const unsigned width = static_cast<unsigned>(lim.width);
+  const unsigned height = static_cast<unsigned>(lim.height);
+  const long step_index_y = static_cast<long>(step_y) * lim.width;
+  long index = static_cast<long>(iy) * lim.width + ix;
   double t = 0.0;
   while (t < t_end) {
-    if (!lim.contains(ix, iy)) return;
-    if (!visit(lim.index(ix, iy), s)) return;
-    if (t_max_x < t_max_y) {
-      t = t_max_x;
-      t_max_x += t_delta_x;
-      ix += step_x;
-      s += ds_x;
-    } else {
-      t = t_max_y;
-      t_max_y += t_delta_y;
-      iy += step_y;
-      s += ds_y;
-    }
+    if (static_cast<unsigned>(ix) >= width || static_cast<unsigned>(iy) >= height) return;
+    if (!visit(static_cast<size_t>(index), s)) return;
+    const bool along_x = t_max_x < t_max_y;
+    t = along_x ? t_max_x : t_max_y;
+    t_max_x += along_x ? t_delta_x : 0.0;
+    t_max_y += along_x ? 0.0 : t_delta_y;
+    ix += along_x ? step_x : 0;
+    iy += along_x ? 0 : step_y;
+    index += along_x ? step_x : step_index_y;
+    s += along_x ? ds_x : ds_y;
   }
 }
-
-// The free-space walk of insert's second pass: walkRay with the visit inlined and the
-// branches the CPU cannot predict (which axis to step) made arithmetic. Visits the same
-// cells in the same order as walkRay, stopping at the first cell whose centre lies at or
-// beyond `until` along the ray (beyond, when `inclusive`).
-struct FreeWalk {
-  const MapLimits& lim;
-  uint32_t* stamp;
-  int16_t* log_odds;
-  uint8_t* seen;
-  uint8_t* pending_seen;
-  uint32_t scan_id;
-  int lo;
-  int16_t free_delta;
-
-  void operator()(const Eigen::Vector2d& origin, double dx, double dy, double t_end, double t_start,
-                  double until, bool inclusive) const {
-    const double res = lim.resolution;
-    int ix = lim.cellX(origin.x()), iy = lim.cellY(origin.y());
-    const int step_x = dx > 0 ? 1 : -1, step_y = dy > 0 ? 1 : -1;
-    const double inf = std::numeric_limits<double>::infinity();
-    const double next_x = lim.origin.x() + (ix + (step_x > 0 ? 1 : 0)) * res;
-    const double next_y = lim.origin.y() + (iy + (step_y > 0 ? 1 : 0)) * res;
-    double t_max_x = dx != 0.0 ? (next_x - origin.x()) / dx : inf;
-    double t_max_y = dy != 0.0 ? (next_y - origin.y()) / dy : inf;
-    const double t_delta_x = dx != 0.0 ? res / std::abs(dx) : inf;
-    const double t_delta_y = dy != 0.0 ? res / std::abs(dy) : inf;
-    const Eigen::Vector2d c0 = lim.cellCenter(ix, iy) - origin;
-    double s = c0.x() * dx + c0.y() * dy + t_start;
-    const double ds_x = step_x * res * dx, ds_y = step_y * res * dy;
-    const unsigned width = static_cast<unsigned>(lim.width),
-                   height = static_cast<unsigned>(lim.height);
-    const long step_index_y = static_cast<long>(step_y) * lim.width;
-    long index = static_cast<long>(iy) * lim.width + ix;
-    double t = 0.0;
-    while (t < t_end) {
-      if (static_cast<unsigned>(ix) >= width || static_cast<unsigned>(iy) >= height) return;
-      if (inclusive ? s > until : s >= until) return;
-      const size_t cell = static_cast<size_t>(index);
-      if (stamp[cell] == scan_id) {
-        pending_seen[cell] = 1;
-      } else {
-        stamp[cell] = scan_id;
-        log_odds[cell] = static_cast<int16_t>(std::max(lo, log_odds[cell] + free_delta));
-        seen[cell] = 1;
-      }
-      const bool along_x = t_max_x < t_max_y;
-      t = along_x ? t_max_x : t_max_y;
-      t_max_x += along_x ? t_delta_x : 0.0;
-      t_max_y += along_x ? 0.0 : t_delta_y;
-      ix += along_x ? step_x : 0;
-      iy += along_x ? 0 : step_y;
-      index += along_x ? step_x : step_index_y;
-      s += along_x ? ds_x : ds_y;
-    }
-  }
-};
 
 }  // namespace
 
@@ -221,7 +166,6 @@ void OccupancyGrid::insert(const RadialMap& scan, const Pose2& X_WR) {
   // hierarchy: a column at level l (2^l divides its index, 2^(l+1) does not) starts its
   // walk where the two coarser columns 2^l to either side have drifted more than 0.7 cell
   // apart, and no farther than they reach; column 0 and the ends walk from the sensor.
-  const FreeWalk walk{lim, stamp, log_odds, seen, pending_seen_.data(), scan_id_, lo, free_delta};
   const size_t n = scan.readings.size();
   for (size_t k = 0; k < n; ++k) {
     const RadialReading& reading = scan.readings[k];
@@ -243,7 +187,20 @@ void OccupancyGrid::insert(const RadialMap& scan, const Pose2& X_WR) {
     }
     const double a = X_WR.theta + reading.bearing;
     const double dx = std::cos(a), dy = std::sin(a);
-    walk(origin + start * Eigen::Vector2d(dx, dy), dx, dy, until + res - start, start, until, !hit);
+    walkRay(
+        lim, origin + start * Eigen::Vector2d(dx, dy), dx, dy, until + res - start,
+        [&](size_t cell, double s) {
+          if (hit ? s >= until : s > until) return false;
+          if (stamp[cell] == scan_id_) {
+            pending_seen_[cell] = 1;
+            return true;
+          }
+          stamp[cell] = scan_id_;
+          log_odds[cell] = static_cast<int16_t>(std::max(lo, log_odds[cell] + free_delta));
+          seen[cell] = 1;
+          return true;
+        },
+        start);
   }
   for (size_t cell : touched_) {
     log_odds[cell] = static_cast<int16_t>(std::clamp(log_odds[cell] + pending_[cell], lo, hi));
