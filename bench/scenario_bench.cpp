@@ -3,10 +3,12 @@
 // grid updates). Counters: simulated seconds per wall second and the wall-time split.
 // For a one-core figure run with LP_NUM_THREADS=1 (llvmpipe otherwise uses every core).
 #include <cmath>
+#include <map>
 #include <vector>
 
 #include <benchmark/benchmark.h>
 
+#include "apps/drift_command.h"
 #include "apps/run_world.h"
 
 namespace coopmap::bench {
@@ -79,6 +81,38 @@ void BM_DriftLoop20Seeds(benchmark::State& state) {
 }
 
 BENCHMARK(BM_DriftLoop20Seeds)->Arg(0)->Arg(1)->Iterations(1)->Unit(benchmark::kSecond);
+
+// The drift-error benchmark (`coopmap bench drift`): 20 seeds of the loop on the default
+// odometry, home-base localization and every correction model; counters are the means over
+// seeds of the ATE (m) per model and of the home-base fix error. The full table (and
+// drift.csv) comes from `coopmap bench drift --out DIR`.
+void BM_DriftCorrection20Seeds(benchmark::State& state) {
+  DriftBenchResult r;
+  for (auto _ : state) {
+    DriftBenchOptions o;
+    o.world_file = std::string(COOPMAP_SOURCE_DIR) + "/worlds/lab_corridor.yaml";
+    o.seeds = 20;
+    r = runDriftBench(o);
+  }
+  std::map<std::string, std::pair<double, int>> ate;
+  double home_cm = 0.0;
+  int fixes = 0;
+  for (const DriftRow& row : r.rows) {
+    if (row.status != "ok") continue;
+    auto& [sum, n] = ate[row.model];
+    sum += row.ate_rmse_m;
+    ++n;
+    if (row.model == "none") {
+      home_cm += 100.0 * row.home_error_m;
+      ++fixes;
+    }
+  }
+  for (const auto& [model, sn] : ate) state.counters["ate_" + model] = sn.first / sn.second;
+  state.counters["home_fix_cm"] = fixes > 0 ? home_cm / fixes : 0.0;
+  state.counters["seeds_fixed"] = fixes;
+}
+
+BENCHMARK(BM_DriftCorrection20Seeds)->Iterations(1)->Unit(benchmark::kSecond);
 
 }  // namespace
 }  // namespace coopmap::bench
