@@ -257,6 +257,36 @@ HomeReturn localizeFromLog(const TraverseLog& log, const HomeBase& home, double 
       }
     }
     if (out.alignment.ok) {
+      // Last, only the scans that look the way the reference scans looked: stereo's own
+      // systematic errors depend on where in the image a wall is seen, and cancel only
+      // between views taken from the same place in the same direction.
+      const std::vector<size_t> own = referenceEntries(log, config);
+      double lo = 1e9, hi = -1e9;
+      for (size_t i : own) {
+        const double h = log.entries[i].scan.odometry.theta;
+        lo = std::min(lo, h);
+        hi = std::max(hi, h);
+      }
+      const double margin = config.matched_view_margin;
+      std::vector<size_t> matched;
+      for (size_t i : turn) {
+        const double h = (out.alignment.correction * log.entries[i].scan.odometry).theta;
+        const double mid = 0.5 * (lo + hi);
+        if (std::abs(wrapAngle(h - mid)) <= 0.5 * (hi - lo) + margin) matched.push_back(i);
+      }
+      if (matched.size() >= 3) {
+        std::vector<const RadialMap*> scans;
+        for (size_t i : matched) scans.push_back(&log.entries[i].scan);
+        AlignmentConfig tight = config.alignment;
+        tight.robust_scale = std::max(1.0, 0.5 * tight.robust_scale);
+        const AlignmentResult m =
+            ScanAligner(*reference, tight).align(scans, out.alignment.correction);
+        if (m.ok) {
+          out.alignment = m;
+          facing = matched;
+          entry = matched[matched.size() / 2];
+        }
+      }
       out.refined = true;
       fix.status = HomeBaseStatus::kOk;
       fix.correction = out.alignment.correction;
