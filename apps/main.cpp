@@ -8,10 +8,13 @@
 #include <CLI/Config.hpp>
 #include <CLI/Formatter.hpp>
 
+#include "apps/calibrate_command.h"
 #include "apps/carmen_command.h"
 #include "apps/corners_command.h"
 #include "apps/drift_command.h"
 #include "apps/odometry_fit_command.h"
+#include "apps/replay_command.h"
+#include "apps/robot_command.h"
 #include "apps/run_world.h"
 #include "apps/stereo_eval_command.h"
 #include "apps/traverse_command.h"
@@ -55,8 +58,28 @@ int main(int argc, char** argv) {
   cmd_run->add_flag("--steer-by-truth", run.steer_by_truth,
                     "Follow the route by the true pose, as a person driving it would: the path "
                     "is the intended one and odometry only records it (drift experiments)");
+  cmd_run->add_option("--record", run.record_dir,
+                      "Record each robot's raw stream (camera images, stamps, odometry, "
+                      "commands, rig and robot description) and the ground truth into this "
+                      "folder, for `coopmap replay` (layout: its README.md)");
+  cmd_run->add_flag("--explore", run.explore,
+                    "Autonomous missions instead of the routes: look at the home base, explore "
+                    "frontiers with OMPL paths, come home when the budget is spent or nothing "
+                    "reachable is left, look at the home base again");
   bool quiet = false;
   cmd_run->add_flag("--quiet", quiet, "No progress bar");
+
+  coopmap::ReplayOptions replay;
+  auto* cmd_replay = app.add_subcommand(
+      "replay",
+      "Replay a recording (`coopmap run --record DIR`) through the robot interface: the same "
+      "mapping core writes the same outputs as the live run to --out (maps, trajectories, "
+      "traverse logs, metrics.json); a simulator recording reproduces the live maps bit for "
+      "bit.");
+  cmd_replay->add_option("recording", replay.recording, "Recording folder")
+      ->required()
+      ->check(CLI::ExistingDirectory);
+  cmd_replay->add_option("--out", replay.out_dir, "Output folder (created if missing)")->required();
 
   coopmap::StereoEvalOptions eval;
   std::string tsukuba;
@@ -235,9 +258,49 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
 
+  coopmap::RobotCommandOptions robot_options;
+  auto* cmd_robot = app.add_subcommand(
+      "robot",
+      "Drive a real B-14 base over its rFLEX controller (serial port) on the wall clock: the "
+      "route follower of the config file runs through the robot interface until the route is "
+      "done or Ctrl-C (then a safe stop). The config names the serial device and baud, the "
+      "robot model file, and the route.");
+  cmd_robot->add_option("config", robot_options.config, "Robot config file (YAML)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd_robot->add_flag("--dry-run", robot_options.dry_run,
+                      "Check the config and that the controller answers; move nothing");
+  cmd_robot->add_flag("--quiet", robot_options.quiet, "No progress lines");
+
+  coopmap::CalibrateOptions calibrate;
+  auto* cmd_calibrate = app.add_subcommand(
+      "calibrate",
+      "Calibrate the trinocular rig from checkerboard views: each camera (focal lengths, "
+      "principal point, distortion k1 k2 p1 p2 k3), each partner against the reference "
+      "(rotation, baseline); prints them with the reprojection RMS and writes the calibration "
+      "(OpenCV FileStorage YAML) that the camera driver rectifies with.");
+  cmd_calibrate
+      ->add_option("--reference", calibrate.sources[0],
+                   "Reference camera's views: an image sequence (printf pattern, e.g. "
+                   "ref_%04d.png) or a video file")
+      ->required();
+  cmd_calibrate->add_option("--horizontal", calibrate.sources[1], "Horizontal partner's views")
+      ->required();
+  cmd_calibrate->add_option("--vertical", calibrate.sources[2], "Vertical partner's views")
+      ->required();
+  cmd_calibrate->add_option("--board", calibrate.board, "Inner corners COLSxROWS, e.g. 9x6")
+      ->required();
+  cmd_calibrate->add_option("--square", calibrate.square, "Side of a square (m)")
+      ->required()
+      ->check(CLI::PositiveNumber);
+  cmd_calibrate->add_option("--out", calibrate.out_file, "Calibration file to write (YAML)")
+      ->required();
+
   CLI11_PARSE(app, argc, argv);
 
   try {
+    if (cmd_robot->parsed()) return coopmap::runRobotCommand(robot_options);
+    if (cmd_calibrate->parsed()) std::printf("%s", coopmap::runCalibrate(calibrate).report.c_str());
     if (cmd_traverse->parsed()) {
       const coopmap::TraverseSummary t = coopmap::runTraverse(trav);
       std::printf(
@@ -335,6 +398,14 @@ int main(int argc, char** argv) {
             r.frames, r.score.bad_pixel_rate, r.score.mae, r.score.density, r.score.valid,
             r.score.evaluated);
       }
+    }
+    if (cmd_replay->parsed()) {
+      const coopmap::ReplayResult r = coopmap::runReplay(replay);
+      for (const auto& robot : r.robots)
+        std::printf("%s: %d frames over %.1f s, odometry path %.1f m\n", robot.name.c_str(),
+                    robot.frames, robot.duration_s, robot.odometry_path_length_m);
+      std::printf("replayed %s in %.1f s wall; outputs in %s\n", replay.recording.c_str(),
+                  r.wall_time_s, replay.out_dir.c_str());
     }
     if (cmd_run->parsed()) {
       if (robots > 0) run.robots = robots;

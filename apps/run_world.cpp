@@ -9,11 +9,13 @@
 #include <memory>
 #include <stdexcept>
 
+#include "apps/run_outputs.h"
 #include "core/agent/mapper.h"
+#include "core/agent/mission.h"
 #include "core/agent/route_follower.h"
 #include "core/io/atomic_file.h"
 #include "core/io/json_writer.h"
-#include "core/mapping/map_io.h"
+#include "robots/replay/recording_writer.h"
 #include "robots/robot_model.h"
 #include "robots/sim/sim_robot.h"
 #include "sim/simulator.h"
@@ -27,31 +29,25 @@ struct RobotRun {
   std::unique_ptr<SimRobot> driver;
   std::unique_ptr<Mapper> mapper;
   std::unique_ptr<RouteFollower> follower;
+  std::unique_ptr<MissionAgent> mission;  // autonomous runs
+  const RadialMap* latest = nullptr;      // this step's radial map, for the mission
   RobotRunResult result;
   Pose2 last_true;
   GridU8 truth;  // true occupancy up to the robot's swept height
   // Control steps of each kind of motion since the last sensing cycle: the cycle's segment
   // is the kind most of them had.
   int turn_steps = 0, straight_steps = 0;
+  int recording = -1;                   // the robot's index in the recording
+  RobotDescription mapper_description;  // what the mapper was given
 };
 
 void writeOutputs(const RunOptions& opt, const sim::World& world, const RunResult& result,
                   const std::vector<RobotRun>& runs) {
   std::filesystem::create_directories(opt.out_dir);
-  for (const RobotRun& r : runs) {
-    const std::string& name = r.result.name;
-    const OccupancyGrid& grid = r.mapper->grid();
-    writeRosMap(grid, opt.out_dir, "map_" + name);
-    writeMapPng(opt.out_dir + "/map_" + name + ".png", grid,
-                {{r.result.groundtruth, 0, 160, 0}, {r.result.odometry, 0, 0, 230}});
-    writeFileAtomic(opt.out_dir + "/map_" + name + "_evaluation.png",
-                    encodeEvaluationPng(grid, r.truth));
-    writeTum(opt.out_dir + "/trajectory_" + name + "_groundtruth.tum", r.result.groundtruth,
-             "coopmap ground truth of " + name + " in world " + world.name);
-    writeTum(opt.out_dir + "/trajectory_" + name + "_odometry.tum", r.result.odometry,
-             "coopmap odometry of " + name + " in world " + world.name);
-    saveTraverseLog(opt.out_dir + "/traverse_" + name + ".traverse", r.mapper->traverse());
-  }
+  for (const RobotRun& r : runs)
+    writeRobotOutputs(opt.out_dir,
+                      {r.result.name, world.name, &r.mapper->grid(), &r.result.groundtruth,
+                       &r.result.odometry, &r.truth, &r.mapper->traverse()});
   JsonWriter j;
   j.beginObject();
   j.value("world", world.name).value("world_file", opt.world_file);
@@ -67,6 +63,13 @@ void writeOutputs(const RunOptions& opt, const sim::World& world, const RunResul
     j.beginObject(r.name);
     j.value("path_length_m", r.path_length_m).value("collisions", r.collisions);
     j.value("frames", r.frames).value("route_complete", r.route_complete);
+    if (!r.mission_phase.empty()) {
+      j.beginObject("mission");
+      j.value("phase", r.mission_phase).value("exploration_complete", r.exploration_complete);
+      j.value("goals_reached", r.goals_reached).value("goals_failed", r.goals_failed);
+      j.value("safety_stops", r.safety_stops).value("last_event", r.mission_event);
+      j.endObject();
+    }
     j.value("odometry_error_m", r.odometry_error_m)
         .value("odometry_error_deg", r.odometry_error_deg);
     j.beginObject("map");
@@ -132,8 +135,15 @@ RunResult runWorld(const RunOptions& opt) {
     RobotRun r;
     r.driver = std::make_unique<SimRobot>(sim, index);
     r.mapper = std::make_unique<Mapper>(model.description, limits, MapperConfig{});
+    r.mapper_description = model.description;
     r.mapper->setRobotName(spec.name);
     r.follower = std::make_unique<RouteFollower>(spec.route, RouteConfig{});
+    if (opt.explore) {
+      MissionConfig mission;
+      mission.planning = PlanningMapConfig::forRobot(model.description);
+      mission.planner.seed = static_cast<uint32_t>(opt.seed + i);
+      r.mission = std::make_unique<MissionAgent>(spec.start, mission);
+    }
     r.result.name = spec.name;
     r.last_true = spec.start;
     runs.push_back(std::move(r));
@@ -143,6 +153,21 @@ RunResult runWorld(const RunOptions& opt) {
   if (opt.sensing_rate && !(*opt.sensing_rate > 0.0 && *opt.sensing_rate <= 60.0))
     throw std::invalid_argument("--sensing-rate: expected a rate in (0, 60] Hz");
   const double sense_dt = 1.0 / opt.sensing_rate.value_or(world.sensing_rate);
+  std::optional<RecordingWriter> recorder;
+  if (!opt.record_dir.empty()) {
+    RecordingInfo info;
+    info.source = "simulator";
+    info.world = world.name;
+    info.world_file = opt.world_file;
+    info.seed = opt.seed;
+    info.sensing_rate = opt.sensing_rate.value_or(world.sensing_rate);
+    info.control_rate = world.control_rate;
+    info.map = limits;
+    recorder.emplace(opt.record_dir, info);
+    for (RobotRun& r : runs)
+      r.recording = recorder->addRobot(r.result.name, r.mapper_description,
+                                       sim.spec(r.driver->index()).start);
+  }
   using Clock = std::chrono::steady_clock;
   auto seconds = [](Clock::time_point a, Clock::time_point b) {
     return std::chrono::duration<double>(b - a).count();
@@ -174,7 +199,8 @@ RunResult runWorld(const RunOptions& opt) {
                                             ? MotionSegment::kTurn
                                             : MotionSegment::kStraight;
           r.turn_steps = r.straight_steps = 0;
-          r.mapper->process(*frame, segment);
+          r.latest = &r.mapper->process(*frame, segment);
+          if (recorder) recorder->addFrame(r.recording, *frame, segment);
           ++r.result.frames;
         }
       }
@@ -182,14 +208,21 @@ RunResult runWorld(const RunOptions& opt) {
       r.result.odometry.push_back({t, r.driver->odometry()});
       // Drift experiments steer by the true pose (as a person driving the route would), so
       // the path is the intended one and odometry only records it.
-      const MotionCommand cmd =
-          r.follower->update(opt.steer_by_truth ? sim.truePose(i) : r.driver->odometry(), t);
+      const Pose2 steer = opt.steer_by_truth ? sim.truePose(i) : r.driver->odometry();
+      const MotionCommand cmd = r.mission ? r.mission->update(t, steer, r.mapper->grid(), r.latest,
+                                                              r.driver->status().bumped)
+                                          : r.follower->update(steer, t);
+      r.latest = nullptr;
       r.driver->command(cmd);
+      if (recorder)
+        recorder->addControl(r.recording, t, r.result.odometry.back().pose, cmd,
+                             r.result.groundtruth.back().pose);
       const MotionSegment segment = segmentOf(cmd);
       r.turn_steps += segment == MotionSegment::kTurn;
       r.straight_steps += segment == MotionSegment::kStraight;
       // A robot without a route stays put for the whole run.
-      all_done = all_done && r.follower->done() && !sim.spec(i).route.empty();
+      all_done = all_done &&
+                 (r.mission ? r.mission->done() : r.follower->done() && !sim.spec(i).route.empty());
     }
     if (progress && t >= next_progress) {
       drawProgress(t, opt.duration);
@@ -219,14 +252,28 @@ RunResult runWorld(const RunOptions& opt) {
     const int i = r.driver->index();
     const Pose2 truth = sim.truePose(i), odo = r.driver->odometry();
     r.result.collisions = r.driver->status().contact_events;
-    r.result.route_complete = r.follower->done();
+    r.result.route_complete = r.mission ? r.mission->done() : r.follower->done();
+    if (r.mission) {
+      r.result.mission_phase = toString(r.mission->phase());
+      r.result.exploration_complete = r.mission->explorationComplete();
+      r.result.goals_reached = r.mission->goalsReached();
+      r.result.goals_failed = r.mission->goalsFailed();
+      r.result.safety_stops = r.mission->safetyStops();
+      r.result.mission_event = r.mission->lastEvent();
+    }
     r.result.traverse = r.mapper->traverse();
     r.result.odometry_error_m = std::hypot(truth.x - odo.x, truth.y - odo.y);
     r.result.odometry_error_deg = std::abs(wrapAngle(truth.theta - odo.theta)) * 180.0 / M_PI;
     r.truth = sim::trueOccupancy(world, limits, sim.description(i).swept_height);
     r.result.map =
         computeMapMetrics(r.mapper->grid(), r.truth, sim.spec(i).start.translation(), &floor);
+    r.result.grid = r.mapper->grid();
     result.robots.push_back(r.result);
+    if (recorder) recorder->setTruthOccupancy(r.recording, r.truth);
+  }
+  if (recorder) {
+    recorder->setFloor(floor);
+    recorder->finish();
   }
   result.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();

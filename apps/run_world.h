@@ -12,6 +12,7 @@
 #include "core/correction/traverse_log.h"
 #include "core/io/tum.h"
 #include "core/mapping/map_metrics.h"
+#include "core/mapping/occupancy_grid.h"
 #include "core/perception/radial_map.h"
 #include "core/robot/robot_interface.h"
 
@@ -20,14 +21,18 @@ namespace coopmap {
 struct RunOptions {
   std::string world_file;
   std::string out_dir;  // empty: write nothing
+  // Empty: no recording; else each robot's raw stream (images, stamps, odometry, commands,
+  // description) and the ground truth are recorded there (robots/replay/recording.h).
+  std::string record_dir;
   uint64_t seed = 1;
   double duration = 600.0;              // s of simulated time at most
   std::optional<int> robots;            // use only the first N robots of the world
   std::optional<std::string> odometry;  // "perfect", "drifting" or a preset of the model file
   bool camera_noise = true;             // false: noise-free cameras whatever the model says
   bool steer_by_truth = false;          // follow the route by the true pose (drift experiments)
-  std::optional<double> sensing_rate;   // Hz; overrides the world's
-  bool progress = false;                // progress bar on stderr
+  bool explore = false;  // autonomous missions (core/agent/mission.h) instead of the routes
+  std::optional<double> sensing_rate;  // Hz; overrides the world's
+  bool progress = false;               // progress bar on stderr
   // Called with every sensing frame and its ground-truth depth (reference camera, metres),
   // for evaluation tools; rendering the depth costs a little, so only when set.
   std::function<void(const std::string& robot, const TrinocularFrame& frame,
@@ -46,6 +51,13 @@ struct RobotRunResult {
   MapMetrics map;
   std::vector<StampedPose2> groundtruth, odometry;
   TraverseLog traverse;  // every radial map with the odometry pose it was taken at
+  // The robot's map at the end.
+  std::optional<OccupancyGrid> grid;
+  // Autonomous runs (RunOptions::explore):
+  std::string mission_phase;  // where the mission stopped ("done" when it came home)
+  bool exploration_complete = false;
+  int goals_reached = 0, goals_failed = 0, safety_stops = 0;
+  std::string mission_event;  // the mission's last event, for people
 };
 
 // Wall time per stage of a run, all robots together (s).
@@ -62,7 +74,7 @@ struct RunResult {
 };
 
 // Runs the world. Throws ConfigError for bad world or robot files, std::invalid_argument
-// for bad options, std::runtime_error when outputs cannot be written.
+// for bad options, std::runtime_error when outputs or the recording cannot be written.
 RunResult runWorld(const RunOptions& options);
 
 }  // namespace coopmap

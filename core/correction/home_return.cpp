@@ -274,7 +274,12 @@ HomeReturn localizeFromLog(const TraverseLog& log, const HomeBase& home, double 
         const double mid = 0.5 * (lo + hi);
         if (std::abs(wrapAngle(h - mid)) <= 0.5 * (hi - lo) + margin) matched.push_back(i);
       }
-      if (matched.size() >= 3) {
+      // (Only from the same place: elsewhere the views differ anyway.)
+      const Pose2 at_home = out.alignment.correction * at_turn;
+      const Pose2 start = log.entries.front().scan.odometry;
+      const bool same_place =
+          std::hypot(at_home.x - start.x, at_home.y - start.y) <= config.matched_view_radius;
+      if (same_place && matched.size() >= 3) {
         std::vector<const RadialMap*> scans;
         for (size_t i : matched) scans.push_back(&log.entries[i].scan);
         AlignmentConfig tight = config.alignment;

@@ -27,7 +27,8 @@ struct HomeReturnConfig {
   double refined_sigma_xy = 0.01;       // m, 1-sigma of a fix refined by dense alignment
   double refined_sigma_theta = 0.0035;  // rad
   double matched_view_margin = 0.1;     // rad: the final refinement uses the return scans
-                                        // looking as the reference scans did, within this
+                                        // looking as the reference scans did, within this,
+  double matched_view_radius = 0.15;    // m: when the robot is back this close to its start
   double search_radius = 1.0;           // m: without a corner fix, the robot is searched for
                                         // within this of the start (it believes it is home)
   double max_separation_error = 0.1;    // m, observed vs registered corner separation

@@ -150,6 +150,23 @@ Renderer::Renderer(const World& world, const CameraIntrinsics& k, double near_m,
     Impl::Batch& b = im.batches.at(box.texture);
     addBox(b.vertices, box, b.tile);
   }
+  // Checkerboard targets: one single-sided quad each with its print (texture clamped at the
+  // border), counter-clockwise seen from the front (board -z).
+  for (size_t t = 0; t < world.targets.size(); ++t) {
+    const TargetSpec& target = world.targets[t];
+    Impl::Batch& b = im.batches["__target_" + std::to_string(t)];
+    b.texture = im.upload(makeCheckerboardTexture(target));
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    const double hw = (0.5 * target.squares_x + target.border) * target.square;
+    const double hh = (0.5 * target.squares_y + target.border) * target.square;
+    const Eigen::Matrix3d R = target.rotation();
+    auto at = [&](double x, double y) -> Eigen::Vector3d {
+      return target.center + R * Eigen::Vector3d(x, y, 0.0);
+    };
+    addQuad(b.vertices, at(-hw, -hh), at(-hw, hh), at(hw, hh), at(hw, -hh), {0, 0}, {0, 1}, {1, 1},
+            {1, 0}, 1.0);
+  }
   for (auto& [name, batch] : im.batches) {
     if (batch.vertices.empty()) continue;
     glGenBuffers(1, &batch.buffer);

@@ -121,4 +121,19 @@ cv::Mat makeTexture(const TextureSpec& spec, int size) {
   return img;
 }
 
+cv::Mat makeCheckerboardTexture(const TargetSpec& target, int px_per_square) {
+  const int border = static_cast<int>(std::lround(target.border * px_per_square));
+  const int w = target.squares_x * px_per_square + 2 * border;
+  const int h = target.squares_y * px_per_square + 2 * border;
+  const auto white = static_cast<uint8_t>(std::clamp(std::lround(target.white), 0L, 255L));
+  const auto black = static_cast<uint8_t>(std::clamp(std::lround(target.black), 0L, 255L));
+  cv::Mat img(h, w, CV_8UC1, cv::Scalar(white));
+  for (int y = 0; y < target.squares_y * px_per_square; ++y) {
+    uint8_t* row = img.ptr<uint8_t>(border + y) + border;
+    for (int x = 0; x < target.squares_x * px_per_square; ++x)
+      if ((x / px_per_square + y / px_per_square) % 2 == 0) row[x] = black;
+  }
+  return img;
+}
+
 }  // namespace coopmap::sim

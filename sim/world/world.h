@@ -96,6 +96,27 @@ struct SurfaceSpec {
   }
 };
 
+// A planar checkerboard target (for camera calibration): squares_x x squares_y squares, the
+// top-left one black, inside a white border; single-sided. Its board frame B is OpenCV's:
+// origin at the board's centre, x along a row (to the right seen from the front), y down a
+// column, z into the board. At yaw = pitch = roll = 0 it stands upright facing world +x; then
+// it turns by `yaw` about world z, tilts by `pitch` about its own x (positive brings the top
+// edge towards the viewer), and turns by `roll` about its own z.
+struct TargetSpec {
+  Eigen::Vector3d center{0.0, 0.0, 1.0};      // m, world
+  int squares_x = 10, squares_y = 7;          // squares along a row, along a column
+  double square = 0.04;                       // m, side of a square
+  double border = 1.0;                        // white border width, in squares
+  double yaw = 0.0, pitch = 0.0, roll = 0.0;  // rad
+  double black = 20.0, white = 235.0;         // grey levels of the print
+
+  // Rotation R_WB of the board frame in the world.
+  Eigen::Matrix3d rotation() const;
+  // Inner corner (i, j) in the world (m): i = 0..squares_x-2 along a row, j down a column,
+  // in the order cv::findChessboardCorners reports an upright board's corners.
+  Eigen::Vector3d cornerInWorld(int i, int j) const;
+};
+
 struct RobotSpec {
   std::string name;
   std::string model_file;  // resolved path of the robot model YAML
@@ -117,10 +138,11 @@ struct World {
   std::vector<RobotSpec> robots;
   std::vector<PersonSpec> people;
   std::vector<SurfaceSpec> surfaces;
-  double map_resolution = 0.05;  // m per cell for maps and ground truth
-  double physics_rate = 200.0;   // Hz
-  double sensing_rate = 3.0;     // Hz (the paper's rate)
-  double control_rate = 20.0;    // Hz
+  std::vector<TargetSpec> targets;  // drawn by the renderer only: they take no physical space
+  double map_resolution = 0.05;     // m per cell for maps and ground truth
+  double physics_rate = 200.0;      // Hz
+  double sensing_rate = 3.0;        // Hz (the paper's rate)
+  double control_rate = 20.0;       // Hz
 
   // Every solid that never moves, as boxes: walls, furniture, doors that stay closed,
   // home-base arms.

@@ -160,10 +160,30 @@ Eigen::Vector2d PersonSpec::positionAt(double t) const {
   return path.back();
 }
 
+Eigen::Matrix3d TargetSpec::rotation() const {
+  // Upright and facing +x: board x = world y, board y = -world z, board z = -world x.
+  Eigen::Matrix3d upright;
+  upright << 0, 0, -1, 1, 0, 0, 0, -1, 0;
+  const double cy = std::cos(yaw), sy = std::sin(yaw);
+  const double cp = std::cos(pitch), sp = std::sin(pitch);
+  const double cr = std::cos(roll), sr = std::sin(roll);
+  Eigen::Matrix3d Rz, Rx, Rn;
+  Rz << cy, -sy, 0, sy, cy, 0, 0, 0, 1;
+  Rx << 1, 0, 0, 0, cp, -sp, 0, sp, cp;
+  Rn << cr, -sr, 0, sr, cr, 0, 0, 0, 1;
+  return Rz * upright * Rx * Rn;
+}
+
+Eigen::Vector3d TargetSpec::cornerInWorld(int i, int j) const {
+  const Eigen::Vector3d p_B((i + 1 - 0.5 * squares_x) * square, (j + 1 - 0.5 * squares_y) * square,
+                            0.0);
+  return center + rotation() * p_B;
+}
+
 World parseWorld(const std::string& text, const std::string& file) {
   const YamlField root = YamlField::loadString(text, file);
   root.allowOnly({"name", "seed", "floor", "simulation", "textures", "walls", "boxes", "doors",
-                  "home_base", "robots", "people", "surfaces"});
+                  "home_base", "robots", "people", "surfaces", "targets"});
   World w;
   w.file = file;
   w.name = root["name"].asString();
@@ -294,6 +314,25 @@ World parseWorld(const std::string& text, const std::string& file) {
         if (!inside(w, p.path.back())) pt.fail("a point on the floor");
       }
       w.people.push_back(std::move(p));
+    }
+  }
+
+  if (const auto targets = root.get("targets")) {
+    for (const YamlField& f : targets->elements()) {
+      f.allowOnly({"center", "squares", "square", "border", "yaw_deg", "pitch_deg", "roll_deg"});
+      TargetSpec t;
+      t.center = f["center"].asVector3();
+      const YamlField squares = f["squares"];
+      const auto counts = squares.elements();
+      if (counts.size() != 2) squares.fail("[squares along a row, squares along a column]");
+      t.squares_x = counts[0].asInt(3, 100);
+      t.squares_y = counts[1].asInt(3, 100);
+      t.square = f["square"].asDouble(0.001, 1.0, "a square side in [0.001, 1] m");
+      t.border = optionalDouble(f, "border", t.border, 0.0, 10.0, "a border in [0, 10] squares");
+      t.yaw = optionalDouble(f, "yaw_deg", 0.0, -360, 360, "degrees in [-360, 360]") * kDeg;
+      t.pitch = optionalDouble(f, "pitch_deg", 0.0, -89, 89, "degrees in [-89, 89]") * kDeg;
+      t.roll = optionalDouble(f, "roll_deg", 0.0, -360, 360, "degrees in [-360, 360]") * kDeg;
+      w.targets.push_back(t);
     }
   }
 

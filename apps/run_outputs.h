@@ -1,0 +1,31 @@
+// The per-robot outputs of a run, shared by a live run (`coopmap run`) and a replay
+// (`coopmap replay`), so both write the same files the same way.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/correction/traverse_log.h"
+#include "core/io/tum.h"
+#include "core/mapping/grid.h"
+#include "core/mapping/occupancy_grid.h"
+
+namespace coopmap {
+
+// What one robot's outputs are made of; pointers are borrowed for the call.
+struct RobotOutputs {
+  std::string name;
+  std::string world;  // world name, for the trajectory files' comments
+  const OccupancyGrid* grid = nullptr;
+  const std::vector<StampedPose2>* groundtruth = nullptr;  // null or empty: none
+  const std::vector<StampedPose2>* odometry = nullptr;
+  const GridU8* truth = nullptr;  // true occupancy over the grid's limits; null: none
+  const TraverseLog* traverse = nullptr;
+};
+
+// Writes into `dir` (which must exist), each file atomically: map_<name>.{pgm,yaml,png},
+// map_<name>_evaluation.png (with truth), trajectory_<name>_groundtruth.tum (with ground
+// truth), trajectory_<name>_odometry.tum and traverse_<name>.traverse.
+void writeRobotOutputs(const std::string& dir, const RobotOutputs& r);
+
+}  // namespace coopmap

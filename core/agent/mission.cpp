@@ -1,0 +1,291 @@
+#include "core/agent/mission.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace coopmap {
+
+namespace {
+
+std::vector<Waypoint> routeOf(const std::vector<Eigen::Vector2d>& waypoints) {
+  std::vector<Waypoint> route;
+  for (size_t i = 1; i < waypoints.size(); ++i) route.push_back({waypoints[i], false, 0.0, 0.0});
+  return route;
+}
+
+}  // namespace
+
+void MissionConfig::validate() const {
+  auto positive = [](const char* field, double v) {
+    if (!(v > 0.0))
+      throw std::invalid_argument(std::string("mission config: field '") + field +
+                                  "': expected a positive number, got " + std::to_string(v));
+  };
+  positive("budget_m", budget_m);
+  positive("budget_s", budget_s);
+  positive("replan_period_s", replan_period_s);
+  positive("safety_distance", safety_distance);
+  positive("safety_half_angle", safety_half_angle);
+  positive("look_turn_rate", look_turn_rate);
+  positive("goal_timeout_factor", goal_timeout_factor);
+  positive("backoff_s", backoff_s);
+  positive("escape_radius", escape_radius);
+  if (!(look_wait_s >= 0.0))
+    throw std::invalid_argument(
+        "mission config: field 'look_wait_s': expected a number >= 0, got " +
+        std::to_string(look_wait_s));
+  frontiers.validate();
+  planner.validate();
+  planning.validate();
+  route.validate();
+}
+
+const char* toString(MissionPhase p) {
+  switch (p) {
+    case MissionPhase::kLookAtHome:
+      return "look at home";
+    case MissionPhase::kExplore:
+      return "explore";
+    case MissionPhase::kReturn:
+      return "return";
+    case MissionPhase::kLookAgain:
+      return "look at home again";
+    case MissionPhase::kDone:
+      return "done";
+  }
+  return "?";
+}
+
+MissionAgent::MissionAgent(const Pose2& home, const MissionConfig& config)
+    : home_(home),
+      config_(config),
+      explorer_(config.frontiers, config.planner),
+      planner_(config.planner) {
+  config_.validate();
+}
+
+void MissionAgent::startRoute(std::vector<Waypoint> route, double) {
+  follower_ = std::make_unique<RouteFollower>(std::move(route), config_.route);
+}
+
+bool MissionAgent::obstacleAhead(const RadialMap& scan) const {
+  for (const RadialReading& r : scan.readings)
+    if (r.kind == RadialKind::kHit && r.range < config_.safety_distance &&
+        std::abs(r.bearing) < config_.safety_half_angle)
+      return true;
+  return false;
+}
+
+PlanningMap MissionAgent::planningMap(const OccupancyGrid& map, bool allow_unknown) const {
+  // Where the robot has been is free, whatever the cameras saw of it (they never see
+  // beneath the robot).
+  const MapLimits& lim = map.limits();
+  Grid<CellState> states(lim, CellState::kUnknown);
+  for (int iy = 0; iy < lim.height; ++iy)
+    for (int ix = 0; ix < lim.width; ++ix)
+      states.at(ix, iy) =
+          visited_.cells.empty() || !visited_.at(ix, iy) ? map.state(ix, iy) : CellState::kFree;
+  PlanningMapConfig c = config_.planning;
+  c.allow_unknown = allow_unknown;
+  return PlanningMap(states, c);
+}
+
+void MissionAgent::markVisited(const OccupancyGrid& map, const Pose2& odometry) {
+  const MapLimits& lim = map.limits();
+  if (visited_.cells.empty()) visited_ = GridU8(lim, 0);
+  const double r = config_.planning.robot_radius;
+  const int n = static_cast<int>(std::ceil(r / lim.resolution));
+  const int cx = lim.cellX(odometry.x), cy = lim.cellY(odometry.y);
+  for (int iy = cy - n; iy <= cy + n; ++iy)
+    for (int ix = cx - n; ix <= cx + n; ++ix)
+      if (lim.contains(ix, iy) && (lim.cellCenter(ix, iy) - odometry.translation()).norm() <= r)
+        visited_.at(ix, iy) = 1;
+}
+
+void MissionAgent::chooseGoal(double now, const Pose2& odometry, const OccupancyGrid& map) {
+  const PlanningMap planning = planningMap(map, false);
+  if (!planning.freeAt(odometry.translation())) {
+    // Something seen too close (a stereo mismatch, a person passing) leaves the robot on a
+    // cell the planner will not start from: step to the nearest free one first.
+    const MapLimits& lim = map.limits();
+    const int n = static_cast<int>(std::ceil(config_.escape_radius / lim.resolution));
+    const int cx = lim.cellX(odometry.x), cy = lim.cellY(odometry.y);
+    double best = 1e300;
+    Eigen::Vector2d to(0.0, 0.0);
+    for (int iy = cy - n; iy <= cy + n; ++iy)
+      for (int ix = cx - n; ix <= cx + n; ++ix) {
+        const Eigen::Vector2d c = lim.cellCenter(ix, iy);
+        const double d = (c - odometry.translation()).norm();
+        if (d < best && d <= config_.escape_radius && planning.free(ix, iy) &&
+            planning.segmentFree(c, c)) {
+          best = d;
+          to = c;
+        }
+      }
+    if (best < 1e300 && !escaping_) {
+      escaping_ = true;
+      has_goal_ = false;
+      startRoute({{to, false, 0.0, 0.0}}, now);
+      last_event_ = "stepping off a blocked cell";
+      return;
+    }
+  }
+  escaping_ = false;
+  const ExploreStep step = explorer_.next(map, planning, odometry);
+  if (step.status != ExploreStatus::kGoal) {
+    exploration_complete_ = true;
+    last_event_ = "exploration complete: " + step.reason;
+    goHome(now, odometry, map);
+    return;
+  }
+  path_ = step.plan.path;
+  goal_ = step.frontier.goal;
+  has_goal_ = true;
+  goal_deadline_ =
+      now + config_.goal_timeout_factor * (path_.length() / config_.route.linear_speed + 10.0);
+  last_check_ = now;
+  startRoute(routeOf(path_.waypoints), now);
+  last_event_ =
+      "to frontier at (" + std::to_string(goal_.x()) + ", " + std::to_string(goal_.y()) + ")";
+}
+
+void MissionAgent::goHome(double now, const Pose2& odometry, const OccupancyGrid& map) {
+  phase_ = MissionPhase::kReturn;
+  has_goal_ = false;
+  PlanResult plan = planner_.plan(planningMap(map, false), odometry, home_.translation());
+  if (!plan.solved()) plan = planner_.plan(planningMap(map, true), odometry, home_.translation());
+  if (plan.solved()) {
+    path_ = plan.path;
+    startRoute(routeOf(path_.waypoints), now);
+  } else {
+    path_ = PlannedPath{};
+    startRoute({{home_.translation(), false, 0.0, 0.0}}, now);  // straight: nothing better
+  }
+}
+
+MotionCommand MissionAgent::update(double now, const Pose2& odometry, const OccupancyGrid& map,
+                                   const RadialMap* latest, bool bumped) {
+  if (start_time_ < 0.0) {
+    start_time_ = now;
+    last_pose_ = odometry;
+    startRoute({{home_.translation(), true, config_.look_turn_rate, config_.look_wait_s}}, now);
+  }
+  travelled_ += std::hypot(odometry.x - last_pose_.x, odometry.y - last_pose_.y);
+  last_pose_ = odometry;
+  markVisited(map, odometry);
+  // Touching something: back off, give the goal up, plan anew.
+  if (now < backoff_until_) return last_command_ = MotionCommand{-0.1, 0.0};
+  const bool moving = phase_ == MissionPhase::kExplore || phase_ == MissionPhase::kReturn;
+  if (bumped && moving && backoff_until_ < 0.0) {
+    ++safety_stops_;
+    backoff_until_ = now + config_.backoff_s;
+    if (phase_ == MissionPhase::kExplore) {
+      if (has_goal_) explorer_.blacklist(goal_);
+      ++goals_failed_;
+      follower_.reset();
+    }
+    last_event_ = "bumped: backing off";
+    return last_command_ = MotionCommand{-0.1, 0.0};
+  }
+  if (backoff_until_ >= 0.0 && now >= backoff_until_) {
+    backoff_until_ = -1.0;
+    if (phase_ == MissionPhase::kReturn) goHome(now, odometry, map);
+  }
+
+  switch (phase_) {
+    case MissionPhase::kLookAtHome: {
+      const MotionCommand cmd = follower_->update(odometry, now);
+      if (!follower_->done()) return cmd;
+      phase_ = MissionPhase::kExplore;
+      follower_.reset();
+      return MotionCommand::stop();
+    }
+    case MissionPhase::kExplore: {
+      if (travelled_ >= config_.budget_m || now - start_time_ >= config_.budget_s) {
+        last_event_ = "budget spent";
+        goHome(now, odometry, map);
+        return MotionCommand::stop();
+      }
+      const bool driving = last_command_.linear > 0.0;
+      if (follower_ && latest && driving && obstacleAhead(*latest)) {
+        // Stop; the obstacle is in the map now, so plan to the same goal around it, and give
+        // the goal up only when there is no way.
+        ++safety_stops_;
+        follower_.reset();
+        last_event_ = "obstacle ahead: stopped";
+        if (has_goal_) {
+          const PlanResult around = planner_.plan(planningMap(map, false), odometry, goal_);
+          if (around.solved()) {
+            path_ = around.path;
+            startRoute(routeOf(path_.waypoints), now);
+            last_event_ = "obstacle ahead: replanned around it";
+          } else {
+            ++goals_failed_;
+            explorer_.blacklist(goal_);
+            has_goal_ = false;
+          }
+        }
+        return last_command_ = MotionCommand::stop();
+      }
+      if (follower_ && has_goal_ && now > goal_deadline_) {
+        ++goals_failed_;
+        explorer_.blacklist(goal_);
+        follower_.reset();
+        last_event_ = "goal not reached in time: given up";
+      }
+      if (follower_ && follower_->done()) {
+        // Reached: the frontier is seen from here or never will be; do not come back.
+        ++goals_reached_;
+        if (has_goal_) explorer_.blacklist(goal_);
+        follower_.reset();
+      }
+      if (follower_ && now - last_check_ >= config_.replan_period_s) {
+        // The map grew under the path: go on if it is still free, else plan anew.
+        last_check_ = now;
+        const PlanningMap planning = planningMap(map, false);
+        const size_t next = std::min(follower_->nextWaypoint() + 1, path_.waypoints.size() - 1);
+        const PathPlanner::Replan r = planner_.replanIfBlocked(planning, path_, odometry, next);
+        if (r.replanned) {
+          if (r.result.solved()) {
+            path_ = r.result.path;
+            startRoute(routeOf(path_.waypoints), now);
+            last_event_ = "path blocked: replanned";
+          } else {
+            ++goals_failed_;
+            explorer_.blacklist(goal_);
+            follower_.reset();
+            last_event_ = "path blocked, no new one: goal given up";
+          }
+        }
+      }
+      if (!follower_) {
+        chooseGoal(now, odometry, map);
+        return last_command_ = MotionCommand::stop();
+      }
+      return last_command_ = follower_->update(odometry, now);
+    }
+    case MissionPhase::kReturn: {
+      const bool driving = last_command_.linear > 0.0;
+      if (latest && driving && obstacleAhead(*latest)) {
+        ++safety_stops_;
+        goHome(now, odometry, map);  // around whatever is in the way
+        return last_command_ = MotionCommand::stop();
+      }
+      if (!follower_->done()) return last_command_ = follower_->update(odometry, now);
+      phase_ = MissionPhase::kLookAgain;
+      startRoute({{home_.translation(), true, config_.look_turn_rate, 0.0}}, now);
+      return last_command_ = MotionCommand::stop();
+    }
+    case MissionPhase::kLookAgain: {
+      const MotionCommand cmd = follower_->update(odometry, now);
+      if (!follower_->done()) return last_command_ = cmd;
+      phase_ = MissionPhase::kDone;
+      return last_command_ = MotionCommand::stop();
+    }
+    case MissionPhase::kDone:
+      break;
+  }
+  return last_command_ = MotionCommand::stop();
+}
+
+}  // namespace coopmap

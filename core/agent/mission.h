@@ -1,0 +1,93 @@
+// A robot's mission (section 4 of the paper, autonomous): look at the home base, explore
+// the frontiers of its own map with planned paths, keep itself safe, come home when the
+// budget is spent or nothing reachable is left, and look at the home base again (the data
+// the home-base protocol needs to correct the traverse). Robot-agnostic: it turns odometry,
+// the robot's map and its latest radial map into motion commands, in the odometry frame.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/agent/route_follower.h"
+#include "core/mapping/occupancy_grid.h"
+#include "core/perception/radial_map.h"
+#include "core/planning/frontiers.h"
+#include "core/planning/path_planner.h"
+#include "core/planning/planning_map.h"
+
+namespace coopmap {
+
+struct MissionConfig {
+  double budget_m = 60.0;            // m driven before going home
+  double budget_s = 900.0;           // s of mission before going home
+  double replan_period_s = 4.0;      // s between checks of the path against the growing map
+  double safety_distance = 0.30;     // m: an obstacle this close ahead stops the robot
+  double safety_half_angle = 0.5;    // rad: "ahead"
+  double look_wait_s = 3.0;          // s facing the home base before the slow turn
+  double look_turn_rate = 0.26;      // rad/s of the turns in place at home
+  double goal_timeout_factor = 4.0;  // a goal not reached in this many times its path's
+                                     // driving time is given up (blacklisted)
+  double backoff_s = 1.5;            // s of backing off at 0.1 m/s after a bump
+  double escape_radius = 0.6;        // m: a robot on a blocked cell steps to a free one this near
+  FrontierConfig frontiers;
+  PlannerConfig planner;
+  PlanningMapConfig planning;
+  RouteConfig route;
+  void validate() const;  // throws std::invalid_argument naming the field
+};
+
+enum class MissionPhase { kLookAtHome, kExplore, kReturn, kLookAgain, kDone };
+const char* toString(MissionPhase p);
+
+class MissionAgent {
+ public:
+  // `home`: the odometry pose at the home base (the start).
+  MissionAgent(const Pose2& home, const MissionConfig& config);
+
+  // The command for now (s), given the odometry pose, the robot's map (odometry frame) and
+  // the latest radial map (nullptr if none since the last call), and whether the bumpers
+  // touch something (then it backs off and gives the goal up).
+  MotionCommand update(double now, const Pose2& odometry, const OccupancyGrid& map,
+                       const RadialMap* latest, bool bumped = false);
+
+  MissionPhase phase() const { return phase_; }
+  bool done() const { return phase_ == MissionPhase::kDone; }
+  bool explorationComplete() const { return exploration_complete_; }
+  int goalsReached() const { return goals_reached_; }
+  int goalsFailed() const { return goals_failed_; }
+  int safetyStops() const { return safety_stops_; }
+  const std::string& lastEvent() const { return last_event_; }
+
+ private:
+  void startRoute(std::vector<Waypoint> route, double now);
+  PlanningMap planningMap(const OccupancyGrid& map, bool allow_unknown) const;
+  void markVisited(const OccupancyGrid& map, const Pose2& odometry);
+  bool obstacleAhead(const RadialMap& scan) const;
+  void chooseGoal(double now, const Pose2& odometry, const OccupancyGrid& map);
+  void goHome(double now, const Pose2& odometry, const OccupancyGrid& map);
+
+  Pose2 home_;
+  MissionConfig config_;
+  MissionPhase phase_ = MissionPhase::kLookAtHome;
+  std::unique_ptr<RouteFollower> follower_;
+  FrontierExplorer explorer_;
+  PathPlanner planner_;
+  PlannedPath path_;            // the path being followed (explore or return)
+  Eigen::Vector2d goal_{0, 0};  // its goal
+  bool has_goal_ = false;
+  double goal_deadline_ = 0.0;
+  double backoff_until_ = -1.0;
+  bool escaping_ = false;
+  double last_check_ = 0.0;
+  double start_time_ = -1.0;
+  double travelled_ = 0.0;
+  Pose2 last_pose_;
+  bool exploration_complete_ = false;
+  int goals_reached_ = 0, goals_failed_ = 0, safety_stops_ = 0;
+  std::string last_event_;
+  MotionCommand last_command_;
+  GridU8 visited_;  // cells the robot's body has covered: free, seen or not
+};
+
+}  // namespace coopmap

@@ -1,0 +1,156 @@
+#include "core/planning/frontiers.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace coopmap {
+
+void FrontierConfig::validate() const {
+  auto bad = [](const std::string& field, const std::string& expected, double v) {
+    throw std::invalid_argument("frontier config: field '" + field + "': expected " + expected +
+                                ", got " + std::to_string(v));
+  };
+  if (min_cells < 1) bad("min_cells", "an integer >= 1", min_cells);
+  if (!(gain_radius > 0.0)) bad("gain_radius", "a positive number", gain_radius);
+  if (!(goal_search_radius > 0.0))
+    bad("goal_search_radius", "a positive number", goal_search_radius);
+  if (!(cost_weight >= 0.0)) bad("cost_weight", "a number >= 0", cost_weight);
+  if (!(blacklist_radius >= 0.0)) bad("blacklist_radius", "a number >= 0", blacklist_radius);
+  if (max_plans < 1) bad("max_plans", "an integer >= 1", max_plans);
+}
+
+std::vector<Frontier> findFrontiers(const OccupancyGrid& grid, const PlanningMap& planning,
+                                    const Eigen::Vector2d& robot, const FrontierConfig& config) {
+  config.validate();
+  const MapLimits& lim = grid.limits();
+  if (planning.limits().width != lim.width || planning.limits().height != lim.height)
+    throw std::invalid_argument("findFrontiers: the planning map's limits differ from the grid's");
+  const int w = lim.width, h = lim.height;
+  auto isFrontier = [&](int ix, int iy) {
+    if (grid.state(ix, iy) != CellState::kFree) return false;
+    const int n[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
+    for (const auto& d : n) {
+      const int jx = ix + d[0], jy = iy + d[1];
+      if (lim.contains(jx, jy) && !grid.seen(jx, jy)) return true;
+    }
+    return false;
+  };
+  GridU8 mark(lim, 0);
+  for (int iy = 0; iy < h; ++iy)
+    for (int ix = 0; ix < w; ++ix) mark.at(ix, iy) = isFrontier(ix, iy);
+
+  const int robot_region = planning.region(lim.cellX(robot.x()), lim.cellY(robot.y()));
+  std::vector<Frontier> out;
+  std::vector<std::pair<int, int>> stack;
+  for (int iy = 0; iy < h; ++iy)
+    for (int ix = 0; ix < w; ++ix) {
+      if (mark.at(ix, iy) != 1) continue;
+      Frontier f;
+      mark.at(ix, iy) = 2;
+      stack.assign(1, {ix, iy});
+      while (!stack.empty()) {  // 8-connected group
+        const auto [cx, cy] = stack.back();
+        stack.pop_back();
+        f.cells.push_back(lim.cellCenter(cx, cy));
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx) {
+            const int jx = cx + dx, jy = cy + dy;
+            if (lim.contains(jx, jy) && mark.at(jx, jy) == 1) {
+              mark.at(jx, jy) = 2;
+              stack.push_back({jx, jy});
+            }
+          }
+      }
+      if (static_cast<int>(f.cells.size()) < config.min_cells) continue;
+      for (const Eigen::Vector2d& c : f.cells) f.centroid += c;
+      f.centroid /= static_cast<double>(f.cells.size());
+      // Gain: never-observed cells around the centroid.
+      const int r = static_cast<int>(std::ceil(config.gain_radius / lim.resolution));
+      const int gx = lim.cellX(f.centroid.x()), gy = lim.cellY(f.centroid.y());
+      for (int jy = gy - r; jy <= gy + r; ++jy)
+        for (int jx = gx - r; jx <= gx + r; ++jx)
+          if (lim.contains(jx, jy) && !grid.seen(jx, jy) &&
+              (lim.cellCenter(jx, jy) - f.centroid).norm() <= config.gain_radius)
+            ++f.gain;
+      // Goal: the free cell, reachable from the robot, nearest to one of the frontier's cells
+      // (nearest to the centroid among ties in distance bands of a cell).
+      if (robot_region > 0) {
+        const int s = static_cast<int>(std::ceil(config.goal_search_radius / lim.resolution));
+        double best = 1e300;
+        for (int jy = gy - s; jy <= gy + s; ++jy)
+          for (int jx = gx - s; jx <= gx + s; ++jx) {
+            if (planning.region(jx, jy) != robot_region) continue;
+            const Eigen::Vector2d c = lim.cellCenter(jx, jy);
+            const double d = (c - f.centroid).norm();
+            if (d <= config.goal_search_radius && d < best) {
+              best = d;
+              f.goal = c;
+              f.has_goal = true;
+            }
+          }
+      }
+      out.push_back(std::move(f));
+    }
+  return out;
+}
+
+FrontierExplorer::FrontierExplorer(const FrontierConfig& frontiers, const PlannerConfig& planner)
+    : config_(frontiers), planner_(planner) {
+  config_.validate();
+}
+
+bool FrontierExplorer::blacklisted(const Eigen::Vector2d& goal) const {
+  for (const Eigen::Vector2d& b : blacklist_)
+    if ((b - goal).norm() <= config_.blacklist_radius) return true;
+  return false;
+}
+
+ExploreStep FrontierExplorer::next(const OccupancyGrid& grid, const PlanningMap& planning,
+                                   const Pose2& robot) {
+  ExploreStep step;
+  const std::vector<Frontier> frontiers =
+      findFrontiers(grid, planning, robot.translation(), config_);
+  step.frontiers = static_cast<int>(frontiers.size());
+  // Candidates by straight-line utility first; only the best few are planned.
+  struct Candidate {
+    const Frontier* f;
+    double utility;
+  };
+  std::vector<Candidate> candidates;
+  for (const Frontier& f : frontiers) {
+    if (!f.has_goal || f.gain == 0 || blacklisted(f.goal)) continue;
+    const double d = (f.goal - robot.translation()).norm();
+    candidates.push_back({&f, f.gain / (1.0 + config_.cost_weight * d)});
+  }
+  if (candidates.empty()) {
+    step.reason = frontiers.empty() ? "no frontier left"
+                                    : std::to_string(frontiers.size()) +
+                                          " frontiers, none with a reachable goal not "
+                                          "blacklisted";
+    return step;
+  }
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [](const Candidate& a, const Candidate& b) { return a.utility > b.utility; });
+  double best = -1.0;
+  for (size_t k = 0; k < candidates.size() && static_cast<int>(k) < config_.max_plans; ++k) {
+    const Frontier& f = *candidates[k].f;
+    PlanResult plan = planner_.plan(planning, robot, f.goal);
+    if (!plan.solved()) {
+      blacklist(f.goal);  // unreachable now; not fatal
+      continue;
+    }
+    const double utility = f.gain / (1.0 + config_.cost_weight * plan.path.length());
+    if (utility > best) {
+      best = utility;
+      step.status = ExploreStatus::kGoal;
+      step.frontier = f;
+      step.plan = std::move(plan);
+    }
+  }
+  if (step.status == ExploreStatus::kDone)
+    step.reason = "no plan to any of the " + std::to_string(candidates.size()) + " frontiers";
+  return step;
+}
+
+}  // namespace coopmap

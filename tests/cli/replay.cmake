@@ -1,0 +1,67 @@
+# `coopmap run --record` and `coopmap replay`: a recording replays to the live run's maps byte
+# for byte; a broken recording gets a message naming the file and frame, a non-zero exit code,
+# and nothing written.
+file(REMOVE_RECURSE "${WORK_DIR}")
+file(MAKE_DIRECTORY "${WORK_DIR}")
+execute_process(COMMAND "${COOPMAP}" run "${SOURCE_DIR}/worlds/lab.yaml" --out "${WORK_DIR}/live"
+                        --record "${WORK_DIR}/rec" --robots 1 --duration 3 --quiet
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "coopmap run --record failed (rc ${rc}):\n${out}${err}")
+endif()
+foreach(f README.md dataset.yaml jose/robot.yaml jose/frames.csv jose/odometry.csv
+          jose/commands.csv jose/groundtruth.csv jose/images/000003_vertical.png)
+  if(NOT EXISTS "${WORK_DIR}/rec/${f}")
+    message(FATAL_ERROR "coopmap run --record did not write ${f}")
+  endif()
+endforeach()
+
+execute_process(COMMAND "${COOPMAP}" replay "${WORK_DIR}/rec" --out "${WORK_DIR}/replay"
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0 OR NOT out MATCHES "jose: [0-9]+ frames")
+  message(FATAL_ERROR "coopmap replay failed on a good recording (rc ${rc}):\n${out}${err}")
+endif()
+foreach(f map_jose.pgm map_jose.yaml map_jose.png traverse_jose.traverse
+          trajectory_jose_odometry.tum)
+  execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files "${WORK_DIR}/live/${f}"
+                          "${WORK_DIR}/replay/${f}" RESULT_VARIABLE same)
+  if(NOT same EQUAL 0)
+    message(FATAL_ERROR "the replayed ${f} differs from the live run's")
+  endif()
+endforeach()
+
+# A corrupt image.
+file(WRITE "${WORK_DIR}/rec/jose/images/000003_horizontal.png" "not a png")
+execute_process(COMMAND "${COOPMAP}" replay "${WORK_DIR}/rec" --out "${WORK_DIR}/bad"
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(rc EQUAL 0)
+  message(FATAL_ERROR "coopmap replay accepted a corrupt image:\n${out}${err}")
+endif()
+if(NOT err MATCHES "rec/jose/images/000003_horizontal\\.png: frame 3: cannot decode PNG")
+  message(FATAL_ERROR "unclear error message:\n${err}")
+endif()
+if(EXISTS "${WORK_DIR}/bad")
+  message(FATAL_ERROR "coopmap replay wrote outputs for a corrupt recording")
+endif()
+
+# An unknown version.
+file(READ "${WORK_DIR}/rec/dataset.yaml" dataset)
+string(REPLACE "version: 1" "version: 9" dataset "${dataset}")
+file(WRITE "${WORK_DIR}/rec/dataset.yaml" "${dataset}")
+execute_process(COMMAND "${COOPMAP}" replay "${WORK_DIR}/rec" --out "${WORK_DIR}/bad"
+                RESULT_VARIABLE rc ERROR_VARIABLE err)
+if(rc EQUAL 0 OR NOT err MATCHES "rec/dataset\\.yaml:3:10: version: version 9 is not supported")
+  message(FATAL_ERROR "an unknown version was not rejected clearly (rc ${rc}):\n${err}")
+endif()
+
+# No dataset.yaml: not a complete recording.
+file(REMOVE "${WORK_DIR}/rec/dataset.yaml")
+execute_process(COMMAND "${COOPMAP}" replay "${WORK_DIR}/rec" --out "${WORK_DIR}/bad"
+                RESULT_VARIABLE rc ERROR_VARIABLE err)
+if(rc EQUAL 0 OR NOT err MATCHES "rec/dataset\\.yaml: missing file: not a complete coopmap")
+  message(FATAL_ERROR "an incomplete recording was not rejected clearly (rc ${rc}):\n${err}")
+endif()
+if(EXISTS "${WORK_DIR}/bad")
+  message(FATAL_ERROR "coopmap replay wrote outputs for a broken recording")
+endif()
+message(STATUS "coopmap replay reproduces a recording and reports a broken one clearly")

@@ -1,0 +1,104 @@
+#include "core/planning/frontiers.h"
+
+#include <stdexcept>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+namespace coopmap {
+namespace {
+
+// A 6 m x 4 m map at 5 cm: a walled room x in [0, 3] m seen whole, with doorways in its east
+// wall (y intervals, m); east of the wall nothing has been seen.
+OccupancyGrid roomWithDoors(const std::vector<std::pair<double, double>>& doors) {
+  const MapLimits lim = MapLimits::covering({0.0, 0.0}, {6.0, 4.0}, 0.05);
+  OccupancyGrid g(lim, {});
+  std::vector<int16_t> lo(lim.size(), 0);
+  std::vector<uint8_t> seen(lim.size(), 0);
+  for (int iy = 0; iy < lim.height; ++iy)
+    for (int ix = 0; ix < lim.width; ++ix) {
+      const Eigen::Vector2d c = lim.cellCenter(ix, iy);
+      if (c.x() > 3.05) continue;  // unknown
+      const size_t i = lim.index(ix, iy);
+      seen[i] = 1;
+      bool wall = c.x() < 0.1 || c.y() < 0.1 || c.y() > 3.9 || c.x() > 2.95;
+      for (const auto& [y0, y1] : doors)
+        if (c.x() > 2.95 && c.y() > y0 && c.y() < y1) wall = false;
+      lo[i] = wall ? 500 : -500;
+    }
+  g.assign(lo, seen);
+  return g;
+}
+
+PlanningMap planningOf(const OccupancyGrid& g) { return PlanningMap(g, PlanningMapConfig{}); }
+
+TEST(FrontiersTest, TheDoorwayIsTheFrontierAndItsGoalIsReachable) {
+  const OccupancyGrid g = roomWithDoors({{1.5, 2.5}});
+  const PlanningMap p = planningOf(g);
+  const std::vector<Frontier> f = findFrontiers(g, p, {1.0, 2.0}, FrontierConfig{});
+  ASSERT_EQ(f.size(), 1u);
+  EXPECT_NEAR(f[0].centroid.x(), 3.025, 0.06);
+  EXPECT_NEAR(f[0].centroid.y(), 2.0, 0.1);
+  EXPECT_GT(f[0].gain, 100);
+  ASSERT_TRUE(f[0].has_goal);
+  EXPECT_TRUE(p.freeAt(f[0].goal));
+  EXPECT_LT((f[0].goal - f[0].centroid).norm(), 1.5);
+}
+
+TEST(FrontiersTest, ExplorerPlansToTheBestFrontierAndBlacklistsFailures) {
+  // Two doorways: a near one and a far one with the same unknown space behind.
+  const OccupancyGrid g = roomWithDoors({{0.4, 1.2}, {2.8, 3.6}});
+  const PlanningMap p = planningOf(g);
+  FrontierExplorer explorer({}, PlannerConfig{});
+  const Pose2 robot(1.5, 0.8, 0.0);
+  const ExploreStep step = explorer.next(g, p, robot);
+  ASSERT_EQ(step.status, ExploreStatus::kGoal) << step.reason;
+  EXPECT_EQ(step.frontiers, 2);
+  EXPECT_LT(step.frontier.centroid.y(), 2.0);  // the near doorway
+  ASSERT_TRUE(step.plan.solved());
+  for (const Eigen::Vector2d& w : step.plan.path.waypoints) EXPECT_TRUE(p.freeAt(w));
+  // Could not get there after all: the other doorway is next.
+  explorer.blacklist(step.frontier.goal);
+  const ExploreStep second = explorer.next(g, p, robot);
+  ASSERT_EQ(second.status, ExploreStatus::kGoal);
+  EXPECT_GT(second.frontier.centroid.y(), 2.0);
+  explorer.blacklist(second.frontier.goal);
+  const ExploreStep none = explorer.next(g, p, robot);
+  EXPECT_EQ(none.status, ExploreStatus::kDone);
+  EXPECT_EQ(none.reason, "2 frontiers, none with a reachable goal not blacklisted");
+}
+
+TEST(FrontiersTest, AClosedRoomIsExplored) {
+  const OccupancyGrid g = roomWithDoors({});
+  FrontierExplorer explorer({}, PlannerConfig{});
+  const ExploreStep step = explorer.next(g, planningOf(g), Pose2(1.5, 2.0, 0.0));
+  EXPECT_EQ(step.status, ExploreStatus::kDone);
+  EXPECT_EQ(step.reason, "no frontier left");
+}
+
+TEST(FrontiersTest, ADoorwayTooNarrowForTheRobotHasNoGoalBeyondIt) {
+  // 20 cm is too narrow for the B-14 (35.6 cm wide): the frontier is seen, its goal lies
+  // inside the room, and the explorer goes there (to look), not through.
+  const OccupancyGrid g = roomWithDoors({{1.9, 2.1}});
+  const PlanningMap p = planningOf(g);
+  const std::vector<Frontier> f = findFrontiers(g, p, {1.0, 2.0}, FrontierConfig{});
+  ASSERT_EQ(f.size(), 1u);
+  ASSERT_TRUE(f[0].has_goal);
+  EXPECT_LT(f[0].goal.x(), 2.95);
+}
+
+TEST(FrontiersTest, BadConfigNamesTheField) {
+  FrontierConfig c;
+  c.gain_radius = -1.0;
+  try {
+    c.validate();
+    ADD_FAILURE() << "no error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(),
+                 "frontier config: field 'gain_radius': expected a positive number, got "
+                 "-1.000000");
+  }
+}
+
+}  // namespace
+}  // namespace coopmap

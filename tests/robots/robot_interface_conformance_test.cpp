@@ -1,0 +1,65 @@
+// The RobotInterface conformance suite on the simulated B-14 and on the replay driver.
+#include <unistd.h>
+
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "robots/replay/replay_robot.h"
+#include "robots/robot_model.h"
+#include "robots/sim/sim_robot.h"
+#include "sim/simulator.h"
+#include "sim/world/world.h"
+#include "tests/robots/recorded_run.h"
+#include "tests/robots/robot_interface_conformance.h"
+#include "tests/support/test_world.h"
+
+namespace coopmap::test_support {
+namespace {
+
+// A simulator with one B-14 in a small room, and the driver over it.
+DriverUnderTest makeSimDriver() {
+  struct Owner {
+    std::unique_ptr<sim::Simulator> sim;
+    std::unique_ptr<SimRobot> robot;
+  };
+  const std::string world_file =
+      writeTestWorld("conformance_room_" + std::to_string(::getpid()),
+                     R"(floor: {min: [-2, -2], max: [2, 2], texture: carpet}
+walls:
+  - {from: [2, -2], to: [2, 2], thickness: 0.1, height: 2.5, texture: poster}
+home_base:
+  corners:
+    - {position: [1.5, -1.5], heading_deg: 0}
+    - {position: [1.5, 1.5], heading_deg: 0}
+  texture: wood
+)");
+  const sim::World world = sim::loadWorld(world_file);
+  std::filesystem::remove(world_file);
+  auto owner = std::make_shared<Owner>();
+  owner->sim = std::make_unique<sim::Simulator>(world, 1);
+  const RobotModel model = loadRobotModel(world.robots[0].model_file);
+  const int index = owner->sim->addRobot(
+      world.robots[0], {model.description, model.drive, model.odometry, model.cameras});
+  owner->robot = std::make_unique<SimRobot>(*owner->sim, index);
+  sim::Simulator* sim = owner->sim.get();
+  return {owner, owner->robot.get(), [sim](double dt) { sim->advance(dt); }};
+}
+
+// The replay driver over the shared recording; a recording's clock moves with its frames.
+DriverUnderTest makeReplayDriver() {
+  const RecordedRun& run = recordedRun();
+  const RecordingInfo info = readRecordingInfo(run.dir);
+  auto robot = std::make_shared<ReplayRobot>(readRobotRecording(run.dir, info, info.robots[0]));
+  return {robot, robot.get(), [](double) {}};
+}
+
+INSTANTIATE_TEST_SUITE_P(Drivers, RobotInterfaceConformance,
+                         ::testing::Values(DriverCase{"SimRobot", &makeSimDriver},
+                                           DriverCase{"ReplayRobot", &makeReplayDriver}),
+                         driverCaseName);
+
+}  // namespace
+}  // namespace coopmap::test_support

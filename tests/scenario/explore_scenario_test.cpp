@@ -1,0 +1,44 @@
+// Scenario: autonomous exploration of the lab (core/agent/mission.h): one robot looks at the
+// home base, explores frontiers with OMPL paths, comes home when nothing reachable is left,
+// and looks at the home base again. Perfect odometry here: the map is the robot's own, in its
+// odometry frame, and this tests the exploring, not the drift.
+//
+// Measured (seeds 1-5): coverage 0.95, 0.99, 0.30, 0.96, 0.95; collisions 0, 0, 0, 0, 1.
+// Seed 3 stops at the start: stereo mismatches around the robot in its first turn leave it
+// no reachable frontier.
+#include <cstdio>
+
+#include <gtest/gtest.h>
+
+#include "apps/run_world.h"
+
+namespace coopmap {
+namespace {
+
+TEST(ExploreScenarioTest, OneRobotExploresTheLabAndComesHome) {
+  int good = 0;
+  for (uint64_t seed : {1, 2, 3, 4, 5}) {
+    RunOptions o;
+    o.world_file = std::string(COOPMAP_SOURCE_DIR) + "/worlds/lab.yaml";
+    o.seed = seed;
+    o.robots = 1;
+    o.odometry = "perfect";
+    o.explore = true;
+    o.duration = 900.0;
+    const RunResult r = runWorld(o);
+    const RobotRunResult& jose = r.robots[0];
+    std::printf("seed %llu: coverage %.3f wall_recall %.3f collisions %d path %.1f m, %s (%s)\n",
+                static_cast<unsigned long long>(seed), jose.map.coverage, jose.map.wall_recall,
+                jose.collisions, jose.path_length_m, jose.mission_phase.c_str(),
+                jose.mission_event.c_str());
+    EXPECT_EQ(jose.mission_phase, "done") << "seed " << seed;  // it always comes home
+    EXPECT_LE(jose.collisions, 1) << "seed " << seed;
+    if (jose.map.coverage >= 0.9 && jose.map.wall_recall >= 0.9 && jose.collisions == 0 &&
+        jose.exploration_complete)
+      ++good;
+  }
+  EXPECT_GE(good, 3);
+}
+
+}  // namespace
+}  // namespace coopmap
