@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "core/agent/route_follower.h"
 #include "core/io/yaml_reader.h"
 #include "robots/rflex/serial_port.h"
 #include "robots/robot_model.h"
@@ -43,22 +44,6 @@ class SignalGuard {
   struct sigaction old_int_ {};
   struct sigaction old_term_ {};
 };
-
-Waypoint parseWaypoint(const YamlField& f) {
-  Waypoint wp;
-  if (f.isSequence()) {
-    wp.position = f.asVector2();
-    return wp;
-  }
-  if (!f.isMap()) f.fail("a waypoint: [x, y] or {at: [x, y], spin: true}");
-  f.allowOnly({"at", "wait", "spin", "spin_rate_deg"});
-  wp.position = f["at"].asVector2();
-  if (f.has("wait")) wp.wait = f["wait"].asDouble(0.0, 600.0, "seconds in [0, 600]");
-  if (f.has("spin")) wp.spin = f["spin"].asBool();
-  if (f.has("spin_rate_deg"))
-    wp.spin_rate = f["spin_rate_deg"].asDouble(1.0, 180.0, "a turn rate in [1, 180] deg/s") * kDeg;
-  return wp;
-}
 
 std::string posePhrase(const Pose2& p) {
   char b[96];

@@ -19,9 +19,37 @@ void RouteConfig::validate() const {
   if (!(heading_gain > 0.0)) bad("heading_gain", heading_gain);
 }
 
+Waypoint parseWaypoint(const YamlField& f) {
+  Waypoint wp;
+  if (f.isSequence()) {
+    wp.position = f.asVector2();
+    return wp;
+  }
+  if (!f.isMap()) f.fail("a waypoint: [x, y] or {at: [x, y], spin: true}");
+  f.allowOnly({"at", "wait", "spin", "spin_rate_deg"});
+  wp.position = f["at"].asVector2();
+  if (f.has("wait")) wp.wait = f["wait"].asDouble(0.0, 600.0, "seconds in [0, 600]");
+  if (f.has("spin")) wp.spin = f["spin"].asBool();
+  if (f.has("spin_rate_deg"))
+    wp.spin_rate =
+        f["spin_rate_deg"].asDouble(1.0, 180.0, "a turn rate in [1, 180] deg/s") * M_PI / 180.0;
+  return wp;
+}
+
 RouteFollower::RouteFollower(std::vector<Waypoint> route, const RouteConfig& config)
     : route_(std::move(route)), config_(config) {
   config_.validate();
+}
+
+void RouteFollower::afterWait(const Waypoint& wp, const Pose2& pose) {
+  if (wp.spin) {
+    phase_ = Phase::kSpin;
+    spin_done_ = 0.0;
+    last_theta_ = pose.theta;
+    return;
+  }
+  ++next_;
+  phase_ = Phase::kTurn;
 }
 
 MotionCommand RouteFollower::update(const Pose2& pose, double now) {
@@ -53,14 +81,7 @@ MotionCommand RouteFollower::update(const Pose2& pose, double now) {
             wait_until_ = now + wp.wait;
             return MotionCommand::stop();
           }
-          if (wp.spin) {
-            phase_ = Phase::kSpin;
-            spin_done_ = 0.0;
-            last_theta_ = pose.theta;
-            continue;
-          }
-          ++next_;
-          phase_ = Phase::kTurn;
+          afterWait(wp, pose);
           continue;
         }
         if (std::abs(bearing_err) > 0.35) {  // knocked off course: turn in place again
@@ -74,14 +95,7 @@ MotionCommand RouteFollower::update(const Pose2& pose, double now) {
       }
       case Phase::kWait:
         if (now < wait_until_ - 1e-9) return MotionCommand::stop();
-        if (wp.spin) {
-          phase_ = Phase::kSpin;
-          spin_done_ = 0.0;
-          last_theta_ = pose.theta;
-          continue;
-        }
-        ++next_;
-        phase_ = Phase::kTurn;
+        afterWait(wp, pose);
         continue;
       case Phase::kSpin:
         spin_done_ += wrapAngle(pose.theta - last_theta_);

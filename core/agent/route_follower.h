@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 
 #include "core/geometry/pose2.h"
+#include "core/io/yaml_reader.h"
 #include "core/robot/robot_interface.h"
 
 namespace coopmap {
@@ -27,6 +28,10 @@ struct RouteConfig {
   void validate() const;            // throws std::invalid_argument naming the field
 };
 
+// A waypoint from YAML: `[x, y]` or `{at: [x, y], wait: s, spin: true, spin_rate_deg: d}`;
+// ConfigError naming the file, line and field otherwise.
+Waypoint parseWaypoint(const YamlField& f);
+
 class RouteFollower {
  public:
   RouteFollower(std::vector<Waypoint> route, const RouteConfig& config);
@@ -39,6 +44,7 @@ class RouteFollower {
 
  private:
   enum class Phase { kTurn, kDrive, kWait, kSpin };
+  void afterWait(const Waypoint& wp, const Pose2& pose);  // arrived and waited: spin or go on
   std::vector<Waypoint> route_;
   RouteConfig config_;
   size_t next_ = 0;

@@ -19,14 +19,8 @@
 namespace coopmap {
 namespace {
 
-std::string num(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
-
 std::string vec(const Eigen::Vector3d& v) {
-  return "[" + num(v.x()) + ", " + num(v.y()) + ", " + num(v.z()) + "]";
+  return "[" + formatExact(v.x()) + ", " + formatExact(v.y()) + ", " + formatExact(v.z()) + "]";
 }
 
 bool fileExists(const std::string& path) {
@@ -125,7 +119,7 @@ std::vector<StampedPose2> readPoses(const std::string& path) {
   while (csv.next()) {
     const StampedPose2 p{csv.number(0), {csv.number(1), csv.number(2), csv.number(3)}};
     if (!poses.empty() && !(p.stamp > poses.back().stamp))
-      csv.fail(0, "a time after the previous row's " + num(poses.back().stamp));
+      csv.fail(0, "a time after the previous row's " + formatExact(poses.back().stamp));
     poses.push_back(p);
   }
   return poses;
@@ -142,7 +136,7 @@ std::vector<RecordedFrame> readFrames(const std::string& path) {
     f.stamp = csv.number(1);
     if (!frames.empty() && !(f.stamp > frames.back().stamp))
       csv.fail(1, "a time after frame " + std::to_string(frames.size() - 1) + "'s " +
-                      num(frames.back().stamp));
+                      formatExact(frames.back().stamp));
     f.odometry = {csv.number(2), csv.number(3), csv.number(4)};
     const std::string& s = csv.text(5);
     if (s == "stop") {
@@ -166,7 +160,7 @@ std::vector<RecordedCommand> readCommands(const std::string& path) {
     RecordedCommand c;
     c.stamp = csv.number(0);
     if (!commands.empty() && !(c.stamp > commands.back().stamp))
-      csv.fail(0, "a time after the previous row's " + num(commands.back().stamp));
+      csv.fail(0, "a time after the previous row's " + formatExact(commands.back().stamp));
     const std::string& k = csv.text(1);
     if (k == "velocity") {
       c.command.kind = MotionCommand::Kind::kVelocity;
@@ -248,17 +242,18 @@ std::string encodeRecordingInfo(const RecordingInfo& info) {
   y += "world: " + JsonWriter::quote(info.world) + "\n";
   y += "world_file: " + JsonWriter::quote(info.world_file) + "\n";
   y += "seed: " + std::to_string(info.seed) + "\n";
-  y += "sensing_rate: " + num(info.sensing_rate) + "  # Hz\n";
-  y += "control_rate: " + num(info.control_rate) + "  # Hz\n";
-  y += "map: {resolution: " + num(info.map.resolution) + ", origin: [" + num(info.map.origin.x()) +
-       ", " + num(info.map.origin.y()) + "], width: " + std::to_string(info.map.width) +
+  y += "sensing_rate: " + formatExact(info.sensing_rate) + "  # Hz\n";
+  y += "control_rate: " + formatExact(info.control_rate) + "  # Hz\n";
+  y += "map: {resolution: " + formatExact(info.map.resolution) + ", origin: [" +
+       formatExact(info.map.origin.x()) + ", " + formatExact(info.map.origin.y()) +
+       "], width: " + std::to_string(info.map.width) +
        ", height: " + std::to_string(info.map.height) + "}\n";
   y += "robots:\n";
   for (const RecordedRobotInfo& r : info.robots) {
     y += "  - {name: " + JsonWriter::quote(r.name) + ", frames: " + std::to_string(r.frames);
     if (r.start)
-      y += ", start: [" + num(r.start->x) + ", " + num(r.start->y) + ", " + num(r.start->theta) +
-           "]";
+      y += ", start: [" + formatExact(r.start->x) + ", " + formatExact(r.start->y) + ", " +
+           formatExact(r.start->theta) + "]";
     y += "}\n";
   }
   return y;
@@ -268,18 +263,18 @@ std::string encodeRobotDescription(const RobotDescription& d) {
   const CameraIntrinsics& k = d.rig.intrinsics;
   std::string y = "# coopmap robot description: see ../README.md\n";
   y += "model: " + JsonWriter::quote(d.model) + "\n";
-  y += "body_radius: " + num(d.body_radius) + "  # m\n";
-  y += "body_height: " + num(d.body_height) + "  # m\n";
-  y += "swept_height: " + num(d.swept_height) + "  # m\n";
-  y += "max_linear_speed: " + num(d.max_linear_speed) + "  # m/s\n";
-  y += "max_angular_speed: " + num(d.max_angular_speed) + "  # rad/s\n";
-  y += "max_linear_accel: " + num(d.max_linear_accel) + "  # m/s^2\n";
-  y += "max_angular_accel: " + num(d.max_angular_accel) + "  # rad/s^2\n";
+  y += "body_radius: " + formatExact(d.body_radius) + "  # m\n";
+  y += "body_height: " + formatExact(d.body_height) + "  # m\n";
+  y += "swept_height: " + formatExact(d.swept_height) + "  # m\n";
+  y += "max_linear_speed: " + formatExact(d.max_linear_speed) + "  # m/s\n";
+  y += "max_angular_speed: " + formatExact(d.max_angular_speed) + "  # rad/s\n";
+  y += "max_linear_accel: " + formatExact(d.max_linear_accel) + "  # m/s^2\n";
+  y += "max_angular_accel: " + formatExact(d.max_angular_accel) + "  # rad/s^2\n";
   y += "rig:\n";
   y += "  width: " + std::to_string(k.width) + "\n";
   y += "  height: " + std::to_string(k.height) + "\n";
-  y += "  fx: " + num(k.fx) + "\n  fy: " + num(k.fy) + "\n";
-  y += "  cx: " + num(k.cx) + "\n  cy: " + num(k.cy) + "\n";
+  y += "  fx: " + formatExact(k.fx) + "\n  fy: " + formatExact(k.fy) + "\n";
+  y += "  cx: " + formatExact(k.cx) + "\n  cy: " + formatExact(k.cy) + "\n";
   y += "  horizontal_offset: " + vec(d.rig.horizontal_offset) + "\n";
   y += "  vertical_offset: " + vec(d.rig.vertical_offset) + "\n";
   y += "  mount_position: " + vec(d.rig.mount_position) + "\n";
@@ -420,6 +415,12 @@ GridU8 decodeGridPng(const std::string& bytes, const MapLimits& limits, const st
     for (int ix = 0; ix < limits.width; ++ix)
       grid.at(ix, iy) = img.at<uint8_t>(limits.height - 1 - iy, ix) >= 128 ? 1 : 0;
   return grid;
+}
+
+std::string formatExact(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
 }
 
 }  // namespace coopmap

@@ -82,6 +82,8 @@ struct RobotRecording {
 
 // Paths inside a recording.
 std::string recordingImagePath(const std::string& robot_dir, int frame, const char* camera);
+// A number as the recording writes it: 17 significant digits, read back as the same double.
+std::string formatExact(double v);
 
 // The README.md written into every recording: the layout and how to read it without coopmap.
 std::string recordingReadme();

@@ -10,20 +10,16 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "core/io/atomic_file.h"
+#include "robots/replay/recording.h"
 
 namespace fs = std::filesystem;
 
 namespace coopmap {
 namespace {
 
-std::string num(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
-
 std::string poseRow(double stamp, const Pose2& p) {
-  return num(stamp) + "," + num(p.x) + "," + num(p.y) + "," + num(p.theta) + "\n";
+  return formatExact(stamp) + "," + formatExact(p.x) + "," + formatExact(p.y) + "," +
+         formatExact(p.theta) + "\n";
 }
 
 const char* kindName(MotionCommand::Kind k) {
@@ -101,9 +97,9 @@ void RecordingWriter::addFrame(int robot, const TrinocularFrame& frame, MotionSe
                                ": expected an 8-bit grey image to record");
     writePlain(path, std::string(png.begin(), png.end()));
   }
-  r.frames_csv += std::to_string(index) + "," + num(frame.stamp) + "," + num(frame.odometry.x) +
-                  "," + num(frame.odometry.y) + "," + num(frame.odometry.theta) + "," +
-                  toString(segment) + "\n";
+  r.frames_csv += std::to_string(index) + "," + formatExact(frame.stamp) + "," +
+                  formatExact(frame.odometry.x) + "," + formatExact(frame.odometry.y) + "," +
+                  formatExact(frame.odometry.theta) + "," + toString(segment) + "\n";
   ++index;
 }
 
@@ -111,8 +107,9 @@ void RecordingWriter::addControl(int robot, double stamp, const Pose2& odometry,
                                  const MotionCommand& command, const std::optional<Pose2>& truth) {
   Robot& r = robots_.at(static_cast<size_t>(robot));
   r.odometry_csv += poseRow(stamp, odometry);
-  r.commands_csv += num(stamp) + "," + kindName(command.kind) + "," + num(command.linear) + "," +
-                    num(command.angular) + "," + num(command.amount) + "\n";
+  r.commands_csv += formatExact(stamp) + "," + kindName(command.kind) + "," +
+                    formatExact(command.linear) + "," + formatExact(command.angular) + "," +
+                    formatExact(command.amount) + "\n";
   if (truth) {
     r.groundtruth_csv += poseRow(stamp, *truth);
     r.has_truth = true;

@@ -4,6 +4,7 @@
 #include <set>
 #include <sstream>
 
+#include "core/agent/route_follower.h"
 #include "core/io/yaml_reader.h"
 #include "sim/world/world.h"
 
@@ -58,22 +59,6 @@ Pose2 parseStart(const YamlField& f) {
   const double h =
       f.has("heading_deg") ? f["heading_deg"].asDouble(-360, 360, "degrees in [-360, 360]") : 0.0;
   return {p.x(), p.y(), wrapAngle(h * kDeg)};
-}
-
-Waypoint parseWaypoint(const YamlField& f) {
-  Waypoint wp;
-  if (f.isSequence()) {
-    wp.position = f.asVector2();
-    return wp;
-  }
-  if (!f.isMap()) f.fail("a waypoint: [x, y] or {at: [x, y], spin: true}");
-  f.allowOnly({"at", "wait", "spin", "spin_rate_deg"});
-  wp.position = f["at"].asVector2();
-  if (f.has("wait")) wp.wait = f["wait"].asDouble(0.0, 600.0, "seconds in [0, 600]");
-  if (f.has("spin")) wp.spin = f["spin"].asBool();
-  if (f.has("spin_rate_deg"))
-    wp.spin_rate = f["spin_rate_deg"].asDouble(1.0, 180.0, "a turn rate in [1, 180] deg/s") * kDeg;
-  return wp;
 }
 
 bool inside(const World& w, const Eigen::Vector2d& p) {
