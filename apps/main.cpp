@@ -412,6 +412,7 @@ int main(int argc, char** argv) {
       if (!odometry.empty()) run.odometry = odometry;
       if (sensing_rate > 0.0) run.sensing_rate = sensing_rate;
       run.progress = !quiet;
+      run.share_maps = true;
       const coopmap::RunResult r = coopmap::runWorld(run);
       for (const auto& robot : r.robots)
         std::printf(
@@ -420,6 +421,14 @@ int main(int argc, char** argv) {
             robot.name.c_str(), robot.path_length_m, robot.frames, robot.collisions,
             robot.map.wall_recall, robot.map.false_occupied_rate, robot.map.coverage,
             robot.odometry_error_m, robot.odometry_error_deg);
+      if (r.shared_map.computed)
+        std::printf(
+            "shared map (home-base protocol, %d posts): wall_recall %.3f, false_occupied_rate "
+            "%.4f, coverage %.3f; naive sharing: %.3f, %.4f, %.3f\n",
+            r.shared_map.posts_accepted, r.shared_map.protocol.wall_recall,
+            r.shared_map.protocol.false_occupied_rate, r.shared_map.protocol.coverage,
+            r.shared_map.naive.wall_recall, r.shared_map.naive.false_occupied_rate,
+            r.shared_map.naive.coverage);
       std::printf(
           "simulated %.1f s in %.1f s wall (%.1fx real time: physics %.1f s, render "
           "%.1f s, stereo %.1f s, mapping %.1f s); outputs in %s\n",

@@ -13,8 +13,12 @@
 #include "core/agent/mapper.h"
 #include "core/agent/mission.h"
 #include "core/agent/route_follower.h"
+#include "core/correction/drift_correction.h"
+#include "core/correction/home_return.h"
 #include "core/io/atomic_file.h"
 #include "core/io/json_writer.h"
+#include "core/mapping/map_io.h"
+#include "core/sharing/shared_map.h"
 #include "robots/replay/recording_writer.h"
 #include "robots/robot_model.h"
 #include "robots/sim/sim_robot.h"
@@ -48,9 +52,33 @@ void writeOutputs(const RunOptions& opt, const sim::World& world, const RunResul
     writeRobotOutputs(opt.out_dir,
                       {r.result.name, world.name, &r.mapper->grid(), &r.result.groundtruth,
                        &r.result.odometry, &r.truth, &r.mapper->traverse()});
+  const SharedMapResult& shared = result.shared_map;
+  if (shared.computed) {
+    writeRosMap(*shared.protocol_grid, opt.out_dir, "shared_map");
+    writeMapPng(opt.out_dir + "/shared_map.png", *shared.protocol_grid, {});
+    writeRosMap(*shared.naive_grid, opt.out_dir, "shared_map_naive");
+    writeMapPng(opt.out_dir + "/shared_map_naive.png", *shared.naive_grid, {});
+  }
   JsonWriter j;
   j.beginObject();
   j.value("world", world.name).value("world_file", opt.world_file);
+  if (shared.computed) {
+    auto metrics = [&](const char* key, const MapMetrics& m) {
+      j.beginObject(key);
+      j.value("wall_recall", m.wall_recall).value("false_occupied_rate", m.false_occupied_rate);
+      j.value("coverage", m.coverage);
+      if (std::string(key) == "shared_map") {
+        j.value("posts_accepted", shared.posts_accepted);
+        std::string posted, refused;
+        for (const std::string& r : shared.posted) posted += (posted.empty() ? "" : ", ") + r;
+        for (const std::string& r : shared.refused) refused += (refused.empty() ? "" : "; ") + r;
+        j.value("posted", posted).value("refused", refused);
+      }
+      j.endObject();
+    };
+    metrics("shared_map", shared.protocol);
+    metrics("shared_map_naive", shared.naive);
+  }
   j.value("seed", static_cast<long long>(opt.seed));
   j.value("sim_time_s", result.sim_time_s).value("wall_time_s", result.wall_time_s);
   j.value("real_time_factor", result.real_time_factor);
@@ -82,6 +110,55 @@ void writeOutputs(const RunOptions& opt, const sim::World& world, const RunResul
   j.endObject();
   j.endObject();
   writeFileAtomic(opt.out_dir + "/metrics.json", j.str());
+}
+
+// The paper's two ways of sharing: the home-base protocol (localize at the home base,
+// correct the traverse with the heading-drift model, post it) and naive posting.
+SharedMapResult shareMaps(const sim::World& world, const MapLimits& limits, const GridU8& floor,
+                          const std::vector<RobotRun>& runs) {
+  SharedMapResult out;
+  if (world.home_base.corners.size() != 2 || runs.empty()) return out;
+  LocalSharedMap protocol(limits, OccupancyConfig{}), naive(limits, OccupancyConfig{});
+  HomeBase nominal;
+  nominal.first.position = world.home_base.corners[0].position;
+  nominal.first.heading = world.home_base.corners[0].heading;
+  nominal.second.position = world.home_base.corners[1].position;
+  nominal.second.heading = world.home_base.corners[1].heading;
+  double swept = 0.0;
+  for (const RobotRun& r : runs) {
+    const TraverseLog& log = r.mapper->traverse();
+    swept = std::max(swept, r.mapper_description.swept_height);
+    naive.post(naivePost(log, 1));
+    const HomeBaseProtocol p = runHomeBaseProtocol(log, nominal, world.home_base.arm_length);
+    if (p.result.status != HomeReturnStatus::kOk) {
+      out.refused.push_back(log.robot + ": " + toString(p.result.status));
+      continue;
+    }
+    CorrectionConfig config;
+    config.model = CorrectionModel::kHeadingDrift;
+    const CorrectionResult c = correctTraverse(log, p.result.observation, config);
+    if (!c.ok) {
+      out.refused.push_back(log.robot + ": " + c.message);
+      continue;
+    }
+    const PostResult posted = protocol.post(correctedPost(log, c.poses, 1));
+    if (posted.status == PostStatus::kAccepted) {
+      ++out.posts_accepted;
+      out.posted.push_back(log.robot);
+    } else {
+      out.refused.push_back(log.robot + ": " + posted.reason);
+    }
+  }
+  const GridU8 truth = sim::trueOccupancy(world, limits, swept);
+  const Eigen::Vector2d start = runs.front().result.groundtruth.empty()
+                                    ? world.robots.front().start.translation()
+                                    : runs.front().result.groundtruth.front().pose.translation();
+  out.protocol_grid = protocol.grid();
+  out.naive_grid = naive.grid();
+  out.protocol = computeMapMetrics(*out.protocol_grid, truth, start, &floor);
+  out.naive = computeMapMetrics(*out.naive_grid, truth, start, &floor);
+  out.computed = true;
+  return out;
 }
 
 void drawProgress(double t, double total) {
@@ -275,6 +352,7 @@ RunResult runWorld(const RunOptions& opt) {
     recorder->setFloor(floor);
     recorder->finish();
   }
+  if (opt.share_maps) result.shared_map = shareMaps(world, limits, floor, runs);
   result.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   result.real_time_factor = result.wall_time_s > 0 ? result.sim_time_s / result.wall_time_s : 0.0;

@@ -30,6 +30,10 @@ struct RunOptions {
   std::optional<std::string> odometry;  // "perfect", "drifting" or a preset of the model file
   bool camera_noise = true;             // false: noise-free cameras whatever the model says
   bool steer_by_truth = false;          // follow the route by the true pose (drift experiments)
+  // After the run, merge the robots' traverses into a shared map twice: as the paper's
+  // home-base protocol does (only data corrected at the home base) and naively (every
+  // radial map at its odometry pose); RunResult::shared_map and shared_map*.{pgm,yaml,png}.
+  bool share_maps = false;
   bool explore = false;  // autonomous missions (core/agent/mission.h) instead of the routes
   std::optional<double> sensing_rate;  // Hz; overrides the world's
   bool progress = false;               // progress bar on stderr
@@ -65,8 +69,20 @@ struct RunTiming {
   double physics_s = 0.0, render_s = 0.0, stereo_s = 0.0, mapping_s = 0.0;
 };
 
+// The shared maps of a run (RunOptions::share_maps).
+struct SharedMapResult {
+  bool computed = false;
+  MapMetrics protocol;               // robots' traverses corrected at the home base, posted
+  MapMetrics naive;                  // every radial map at its odometry pose, posted as taken
+  int posts_accepted = 0;            // corrected posts the shared map accepted
+  std::vector<std::string> posted;   // robots whose corrected traverse entered
+  std::vector<std::string> refused;  // robots without a home-base fix ("name: reason")
+  std::optional<OccupancyGrid> protocol_grid, naive_grid;
+};
+
 struct RunResult {
   std::vector<RobotRunResult> robots;
+  SharedMapResult shared_map;
   RunTiming timing;
   double sim_time_s = 0.0;
   double wall_time_s = 0.0;
