@@ -124,10 +124,12 @@ SharedMapResult shareMaps(const sim::World& world, const MapLimits& limits, cons
   nominal.first.heading = world.home_base.corners[0].heading;
   nominal.second.position = world.home_base.corners[1].position;
   nominal.second.heading = world.home_base.corners[1].heading;
-  double swept = 0.0;
+  // The truth the shared map is measured against: the tallest robot's (each robot's true
+  // occupancy up to its swept height was computed with its own metrics).
+  const RobotRun* tallest = &runs.front();
   for (const RobotRun& r : runs) {
     const TraverseLog& log = r.mapper->traverse();
-    swept = std::max(swept, r.mapper_description.swept_height);
+    if (r.mapper_description.swept_height > tallest->mapper_description.swept_height) tallest = &r;
     naive.post(naivePost(log, 1));
     const HomeBaseProtocol p = runHomeBaseProtocol(log, nominal, world.home_base.arm_length);
     if (p.result.status != HomeReturnStatus::kOk) {
@@ -149,7 +151,7 @@ SharedMapResult shareMaps(const sim::World& world, const MapLimits& limits, cons
       out.refused.push_back(log.robot + ": " + posted.reason);
     }
   }
-  const GridU8 truth = sim::trueOccupancy(world, limits, swept);
+  const GridU8& truth = tallest->truth;
   const Eigen::Vector2d start = runs.front().result.groundtruth.empty()
                                     ? world.robots.front().start.translation()
                                     : runs.front().result.groundtruth.front().pose.translation();

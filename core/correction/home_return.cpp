@@ -194,6 +194,12 @@ HomeReturn localizeFromLog(const TraverseLog& log, const HomeBase& home, double 
   // the turn's centre near the start position is scored, and the best few are aligned.
   if (reference) {
     const ScanAligner aligner(*reference, config.alignment);
+    // The same reference with a tighter robust scale, for the second pass of each alignment:
+    // points near but off the reference's walls (another side of an obstacle, a stereo
+    // outlier) stop pulling.
+    AlignmentConfig tight_config = config.alignment;
+    tight_config.robust_scale = std::max(1.0, 0.5 * tight_config.robust_scale);
+    const ScanAligner tight(*reference, tight_config);
     std::vector<Pose2> guesses;
     if (fix.status == HomeBaseStatus::kOk) {
       guesses.push_back(fix.correction);
@@ -241,11 +247,7 @@ HomeReturn localizeFromLog(const TraverseLog& log, const HomeBase& home, double 
       for (size_t i : view.size() >= 3 ? view : turn) scans.push_back(&log.entries[i].scan);
       AlignmentResult a = aligner.align(scans, guess);
       if (a.ok) {
-        // Again with a tighter robust scale: points near but off the reference's walls
-        // (another side of an obstacle, a stereo outlier) stop pulling.
-        AlignmentConfig tight = config.alignment;
-        tight.robust_scale = std::max(1.0, 0.5 * tight.robust_scale);
-        const AlignmentResult second = ScanAligner(*reference, tight).align(scans, a.correction);
+        const AlignmentResult second = tight.align(scans, a.correction);
         if (second.ok) a = second;
       }
       if (&guess == &guesses.front()) out.alignment = a;  // the first reason if all fail
@@ -282,10 +284,7 @@ HomeReturn localizeFromLog(const TraverseLog& log, const HomeBase& home, double 
       if (same_place && matched.size() >= 3) {
         std::vector<const RadialMap*> scans;
         for (size_t i : matched) scans.push_back(&log.entries[i].scan);
-        AlignmentConfig tight = config.alignment;
-        tight.robust_scale = std::max(1.0, 0.5 * tight.robust_scale);
-        const AlignmentResult m =
-            ScanAligner(*reference, tight).align(scans, out.alignment.correction);
+        const AlignmentResult m = tight.align(scans, out.alignment.correction);
         if (m.ok) {
           out.alignment = m;
           facing = matched;

@@ -28,7 +28,9 @@ void settle(EmulatedRflexRobot& r) {
     return std::abs(r.emulator().linearVelocity()) < 1e-9 &&
            std::abs(r.emulator().angularVelocity()) < 1e-9;
   }));
-  sleepFor(0.1);  // a few report periods
+  // A few odometry reports taken at rest, counted, not timed.
+  const uint64_t reports = r.driver().stats().odometry_reports;
+  ASSERT_TRUE(eventually([&] { return r.driver().stats().odometry_reports >= reports + 3; }));
 }
 
 void expectOdometryMatches(EmulatedRflexRobot& r, double tol_m, double tol_rad) {
@@ -239,9 +241,11 @@ TEST(RflexRobotTest, MotionDisabledNeverMovesTheBase) {
     RflexRobot robot(c, RobotDescription{});
     robot.command({0.5, 0.5});
     robot.command(MotionCommand::straight(1.0));
-    sleepFor(0.1);
+    // Long enough for the commands to have gone out if they were going to: counted in
+    // reports received, not timed.
+    const uint64_t reports = robot.stats().odometry_reports;
+    ASSERT_TRUE(eventually([&] { return robot.stats().odometry_reports >= reports + 5; }));
     EXPECT_FALSE(robot.status().segment_active);
-    EXPECT_GE(robot.stats().odometry_reports, 2u);
   }
   const RflexEmulatorCounters counters = e.counters();
   EXPECT_EQ(counters.axis_commands, 0u);
