@@ -66,6 +66,17 @@ int main(int argc, char** argv) {
                     "Autonomous missions instead of the routes: look at the home base, explore "
                     "frontiers with OMPL paths, come home when the budget is spent or nothing "
                     "reachable is left, look at the home base again");
+  cmd_run
+      ->add_option("--sortie-budget", run.sortie_budget_m,
+                   "With --explore: metres of a sortie before the robot goes home to be "
+                   "localized, share its corrected traverse and import the shared map")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  cmd_run
+      ->add_option("--sorties", run.max_sorties,
+                   "With --explore: sorties at most (1: explore once, share after the run)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
   bool quiet = false;
   cmd_run->add_flag("--quiet", quiet, "No progress bar");
 
@@ -139,6 +150,17 @@ int main(int argc, char** argv) {
       ->add_option("--pair-consistency", eval.stereo.pair_consistency,
                    "Fraction each pair's cost at the winner may exceed its own best "
                    "(negative: off)")
+      ->capture_default_str();
+  std::string photometric = coopmap::toString(eval.stereo.photometric);
+  cmd_eval
+      ->add_option("--photometric", photometric,
+                   "Photometric normalisation: global (partners' mean and spread matched to "
+                   "the reference), local (mean removed over --prefilter-window), none")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"none", "global", "local"}));
+  cmd_eval
+      ->add_option("--prefilter-window", eval.stereo.prefilter_window,
+                   "Window of the local prefilter (odd px)")
       ->capture_default_str();
   cmd_eval->add_option("--border", eval.border, "Pixels skipped on every side")
       ->capture_default_str();
@@ -378,6 +400,7 @@ int main(int argc, char** argv) {
         if (cmd_eval->count("--disparities") == 0) eval.stereo.num_disparities = 16;
       }
       eval.stereo.use_vertical = !single_pair;
+      eval.stereo.photometric = coopmap::parsePhotometric(photometric);
       if (eval.world.empty() && (eval.reference.empty() || eval.truth.empty()))
         throw std::invalid_argument(
             "stereo-eval: expected --tsukuba DIR, --world FILE, or --reference/--horizontal/"
@@ -429,6 +452,10 @@ int main(int argc, char** argv) {
             r.shared_map.protocol.false_occupied_rate, r.shared_map.protocol.coverage,
             r.shared_map.naive.wall_recall, r.shared_map.naive.false_occupied_rate,
             r.shared_map.naive.coverage);
+      for (const auto& robot : r.robots)
+        for (const std::string& line : robot.sortie_log)
+          std::printf("%s %s\n", robot.name.c_str(), line.c_str());
+      if (r.time_to_90_s >= 0.0) std::printf("90 %% coverage after %.0f s\n", r.time_to_90_s);
       std::printf(
           "simulated %.1f s in %.1f s wall (%.1fx real time: physics %.1f s, render "
           "%.1f s, stereo %.1f s, mapping %.1f s); outputs in %s\n",

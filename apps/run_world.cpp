@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -9,7 +10,9 @@
 #include <memory>
 #include <stdexcept>
 
+#include "apps/report_html.h"
 #include "apps/run_outputs.h"
+#include "core/agent/cooperation.h"
 #include "core/agent/mapper.h"
 #include "core/agent/mission.h"
 #include "core/agent/route_follower.h"
@@ -33,8 +36,14 @@ struct RobotRun {
   std::unique_ptr<SimRobot> driver;
   std::unique_ptr<Mapper> mapper;
   std::unique_ptr<RouteFollower> follower;
-  std::unique_ptr<MissionAgent> mission;  // autonomous runs
-  const RadialMap* latest = nullptr;      // this step's radial map, for the mission
+  std::unique_ptr<MissionAgent> mission;      // autonomous runs
+  std::unique_ptr<HomeBaseCooperation> coop;  // cooperative autonomous runs
+  size_t sortie_begin = 0;                    // the current sortie's first traverse entry
+  // A robot back away from its start drives there by a first fix and looks again (the
+  // start placed in its estimate's frame by the fix; its map and log stay in that frame).
+  bool reapproaching = false;
+  Pose2 home;  // its start (the map frame is its odometry frame at the start)
+  const RadialMap* latest = nullptr;  // this step's radial map, for the mission
   RobotRunResult result;
   Pose2 last_true;
   GridU8 truth;  // true occupancy up to the robot's swept height
@@ -45,6 +54,117 @@ struct RobotRun {
   RobotDescription mapper_description;  // what the mapper was given
 };
 
+// The robot whose true occupancy the shared map is measured against: the tallest (each
+// robot's truth is the world up to its swept height).
+const RobotRun& tallestRobot(const std::vector<RobotRun>& runs) {
+  const RobotRun* tallest = &runs.front();
+  for (const RobotRun& r : runs)
+    if (r.mapper_description.swept_height > tallest->mapper_description.swept_height) tallest = &r;
+  return *tallest;
+}
+
+std::string fixed(double v, int digits) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", digits, v);
+  return buf;
+}
+
+// report.html: the run on one page (apps/report_html.h).
+void writeRunReport(const RunOptions& opt, const sim::World& world, const RunResult& result,
+                    const std::vector<RobotRun>& runs) {
+  ReportData d;
+  d.title = world.name + ", seed " + std::to_string(opt.seed);
+  auto row = [&](const std::string& k, const std::string& v) { d.summary.emplace_back(k, v); };
+  row("world file", opt.world_file);
+  row("robots", std::to_string(result.robots.size()));
+  row("mode", !opt.explore ? "scripted routes"
+              : result.cooperative
+                  ? "autonomous, cooperative: sorties of " + fixed(opt.sortie_budget_m, 0) +
+                        " m, home-base protocol after each"
+                  : "autonomous, one sortie");
+  row("simulated time",
+      fixed(result.sim_time_s, 1) + " s (" + fixed(result.real_time_factor, 1) + "x real time)");
+  int collisions = 0;
+  for (const RobotRunResult& r : result.robots) collisions += r.collisions;
+  int with_static = 0, with_people = 0, with_robots = 0;
+  for (const RobotRunResult& r : result.robots) {
+    with_static += r.collisions_static;
+    with_people += r.collisions_people;
+    with_robots += r.collisions_robots;
+  }
+  row("collisions", std::to_string(collisions) + " (walls and furniture " +
+                        std::to_string(with_static) + ", people " + std::to_string(with_people) +
+                        ", robots " + std::to_string(with_robots) + ")");
+  if (opt.explore) {
+    bool complete = true;
+    for (const RobotRunResult& r : result.robots) complete = complete && r.exploration_complete;
+    row("exploration complete", complete ? "yes" : "no");
+  }
+  row("time to 90 % coverage",
+      result.time_to_90_s >= 0 ? fixed(result.time_to_90_s, 0) + " s" : "not reached");
+  const SharedMapResult& shared = result.shared_map;
+  if (shared.computed) {
+    auto metrics = [&](const MapMetrics& m) {
+      return "wall_recall " + fixed(m.wall_recall, 3) + ", false_occupied_rate " +
+             fixed(m.false_occupied_rate, 4) + ", coverage " + fixed(m.coverage, 3);
+    };
+    row("shared map (home-base protocol, " + std::to_string(shared.posts_accepted) + " posts)",
+        metrics(shared.protocol));
+    row("shared map, naive sharing", metrics(shared.naive));
+    std::string refused;
+    for (const std::string& r : shared.refused) refused += (refused.empty() ? "" : "; ") + r;
+    if (!refused.empty()) row("not shared", refused);
+  }
+  for (const RobotRunResult& r : result.robots) {
+    row(r.name + ": own map", "wall_recall " + fixed(r.map.wall_recall, 3) +
+                                  ", false_occupied_rate " + fixed(r.map.false_occupied_rate, 4) +
+                                  ", coverage " + fixed(r.map.coverage, 3) + ", path " +
+                                  fixed(r.path_length_m, 1) + " m");
+    for (const std::string& line : r.sortie_log) row(r.name, line);
+    d.robots.push_back({r.name, r.groundtruth, r.odometry, r.corrected});
+  }
+  if (!runs.empty()) {
+    d.truth = &tallestRobot(runs).truth;
+    d.limits = d.truth->limits;
+  }
+  if (shared.computed) {
+    d.images.push_back({"Shared map: home-base protocol", "shared_map.png"});
+    d.images.push_back({"Shared map: naive sharing (every radial map at its odometry pose)",
+                        "shared_map_naive.png"});
+  }
+  for (const RobotRunResult& r : result.robots) {
+    d.images.push_back({r.name + "'s map (truth green, odometry red)", "map_" + r.name + ".png"});
+    d.images.push_back({r.name + "'s map against the truth", "map_" + r.name + "_evaluation.png"});
+  }
+  ReportSeries shared_coverage{result.cooperative ? "shared map" : "all robots' maps together", {}};
+  std::vector<ReportSeries> coverage(result.robots.size()), error(result.robots.size());
+  for (size_t k = 0; k < result.robots.size(); ++k) {
+    coverage[k].name = result.robots[k].name + "'s map";
+    error[k].name = result.robots[k].name;
+  }
+  for (const TimelineSample& s : result.timeline) {
+    shared_coverage.points.emplace_back(s.t, s.shared_coverage);
+    for (size_t k = 0; k < s.robot_coverage.size(); ++k) {
+      coverage[k].points.emplace_back(s.t, s.robot_coverage[k]);
+      error[k].points.emplace_back(s.t, s.robot_error_m[k]);
+    }
+  }
+  d.coverage.push_back(std::move(shared_coverage));
+  for (ReportSeries& c : coverage) d.coverage.push_back(std::move(c));
+  d.error = std::move(error);
+  d.coverage_note =
+      "Share of the true free area reachable from the start that the map has "
+      "seen, every " +
+      fixed(opt.timeline_period_s, 0) + " s." +
+      (result.cooperative ? " The shared map grows when a robot posts a sortie "
+                            "corrected at the home base."
+                          : "");
+  d.error_note =
+      "Distance between each robot's pose estimate (odometry, corrected at each "
+      "home-base fix) and its true pose.";
+  writeReport(opt.out_dir, d);
+}
+
 void writeOutputs(const RunOptions& opt, const sim::World& world, const RunResult& result,
                   const std::vector<RobotRun>& runs) {
   std::filesystem::create_directories(opt.out_dir);
@@ -52,6 +172,36 @@ void writeOutputs(const RunOptions& opt, const sim::World& world, const RunResul
     writeRobotOutputs(opt.out_dir,
                       {r.result.name, world.name, &r.mapper->grid(), &r.result.groundtruth,
                        &r.result.odometry, &r.truth, &r.mapper->traverse()});
+  if (result.cooperative)
+    for (const RobotRunResult& r : result.robots) {
+      writeTum(opt.out_dir + "/trajectory_" + r.name + "_estimate.tum", r.estimate,
+               "coopmap pose estimate of " + r.name +
+                   " (odometry, corrected at each home-base "
+                   "fix) in world " +
+                   world.name);
+      writeTum(opt.out_dir + "/trajectory_" + r.name + "_corrected.tum", r.corrected,
+               "coopmap corrected traverse of " + r.name +
+                   " (radial maps posted to the shared "
+                   "map) in world " +
+                   world.name);
+    }
+  {
+    std::string csv = "t_s,shared_coverage";
+    for (const RobotRunResult& r : result.robots)
+      csv += "," + r.name + "_coverage," + r.name + "_error_m";
+    csv += "\n";
+    char buf[64];
+    for (const TimelineSample& s : result.timeline) {
+      std::snprintf(buf, sizeof buf, "%.2f,%.4f", s.t, s.shared_coverage);
+      csv += buf;
+      for (size_t k = 0; k < s.robot_coverage.size(); ++k) {
+        std::snprintf(buf, sizeof buf, ",%.4f,%.4f", s.robot_coverage[k], s.robot_error_m[k]);
+        csv += buf;
+      }
+      csv += "\n";
+    }
+    writeFileAtomic(opt.out_dir + "/timeline.csv", csv);
+  }
   const SharedMapResult& shared = result.shared_map;
   if (shared.computed) {
     writeRosMap(*shared.protocol_grid, opt.out_dir, "shared_map");
@@ -80,6 +230,18 @@ void writeOutputs(const RunOptions& opt, const sim::World& world, const RunResul
     metrics("shared_map_naive", shared.naive);
   }
   j.value("seed", static_cast<long long>(opt.seed));
+  {
+    int collisions = 0;
+    bool complete = !result.robots.empty();
+    for (const RobotRunResult& r : result.robots) {
+      collisions += r.collisions;
+      complete = complete && r.exploration_complete;
+    }
+    j.value("collisions", collisions);
+    if (opt.explore) j.value("exploration_complete", complete);
+    j.value("cooperative", result.cooperative);
+    j.value("time_to_90_percent_coverage_s", result.time_to_90_s);
+  }
   j.value("sim_time_s", result.sim_time_s).value("wall_time_s", result.wall_time_s);
   j.value("real_time_factor", result.real_time_factor);
   j.beginObject("timing_s");
@@ -90,12 +252,21 @@ void writeOutputs(const RunOptions& opt, const sim::World& world, const RunResul
   for (const RobotRunResult& r : result.robots) {
     j.beginObject(r.name);
     j.value("path_length_m", r.path_length_m).value("collisions", r.collisions);
+    j.beginObject("collisions_with");
+    j.value("static_world", r.collisions_static).value("people", r.collisions_people);
+    j.value("robots", r.collisions_robots);
+    j.endObject();
     j.value("frames", r.frames).value("route_complete", r.route_complete);
     if (!r.mission_phase.empty()) {
       j.beginObject("mission");
       j.value("phase", r.mission_phase).value("exploration_complete", r.exploration_complete);
       j.value("goals_reached", r.goals_reached).value("goals_failed", r.goals_failed);
       j.value("safety_stops", r.safety_stops).value("last_event", r.mission_event);
+      j.value("sorties", r.sorties).value("sorties_fixed", r.sorties_fixed);
+      j.value("sorties_posted", r.sorties_posted);
+      std::string log;
+      for (const std::string& line : r.sortie_log) log += (log.empty() ? "" : "; ") + line;
+      j.value("sortie_log", log);
       j.endObject();
     }
     j.value("odometry_error_m", r.odometry_error_m)
@@ -110,6 +281,43 @@ void writeOutputs(const RunOptions& opt, const sim::World& world, const RunResul
   j.endObject();
   j.endObject();
   writeFileAtomic(opt.out_dir + "/metrics.json", j.str());
+  writeRunReport(opt, world, result, runs);
+}
+
+HomeBase nominalHomeBase(const sim::World& world) {
+  HomeBase nominal;
+  nominal.first.position = world.home_base.corners[0].position;
+  nominal.first.heading = world.home_base.corners[0].heading;
+  nominal.second.position = world.home_base.corners[1].position;
+  nominal.second.heading = world.home_base.corners[1].heading;
+  return nominal;
+}
+
+// Adds `b`'s evidence to `a` (log-odds summed and clamped, seen where either has seen):
+// what two robots' maps show together.
+void mergeSeen(OccupancyGrid& a, const OccupancyGrid& b) {
+  std::vector<int16_t> lo = a.logOddsGrid().cells;
+  std::vector<uint8_t> seen = a.seenGrid().cells;
+  const std::vector<int16_t>& blo = b.logOddsGrid().cells;
+  const std::vector<uint8_t>& bseen = b.seenGrid().cells;
+  for (size_t i = 0; i < lo.size(); ++i) {
+    lo[i] = static_cast<int16_t>(std::clamp(lo[i] + blo[i], -32000, 32000));
+    seen[i] = seen[i] | bseen[i];
+  }
+  a.assign(lo, seen);
+}
+
+// The naive shared map: every radial map of every robot at its raw odometry pose.
+OccupancyGrid naiveSharedMap(const MapLimits& limits, const std::vector<RobotRun>& runs) {
+  LocalSharedMap naive(limits, OccupancyConfig{});
+  for (const RobotRun& r : runs) {
+    TraverseLog log = r.mapper->traverse();
+    const std::vector<Pose2>& raw = r.mapper->rawOdometry();
+    for (size_t i = 0; i < log.entries.size() && i < raw.size(); ++i)
+      log.entries[i].scan.odometry = raw[i];
+    naive.post(naivePost(log, 1));
+  }
+  return naive.grid();
 }
 
 // The paper's two ways of sharing: the home-base protocol (localize at the home base,
@@ -118,19 +326,10 @@ SharedMapResult shareMaps(const sim::World& world, const MapLimits& limits, cons
                           const std::vector<RobotRun>& runs) {
   SharedMapResult out;
   if (world.home_base.corners.size() != 2 || runs.empty()) return out;
-  LocalSharedMap protocol(limits, OccupancyConfig{}), naive(limits, OccupancyConfig{});
-  HomeBase nominal;
-  nominal.first.position = world.home_base.corners[0].position;
-  nominal.first.heading = world.home_base.corners[0].heading;
-  nominal.second.position = world.home_base.corners[1].position;
-  nominal.second.heading = world.home_base.corners[1].heading;
-  // The truth the shared map is measured against: the tallest robot's (each robot's true
-  // occupancy up to its swept height was computed with its own metrics).
-  const RobotRun* tallest = &runs.front();
+  LocalSharedMap protocol(limits, OccupancyConfig{});
+  const HomeBase nominal = nominalHomeBase(world);
   for (const RobotRun& r : runs) {
     const TraverseLog& log = r.mapper->traverse();
-    if (r.mapper_description.swept_height > tallest->mapper_description.swept_height) tallest = &r;
-    naive.post(naivePost(log, 1));
     const HomeBaseProtocol p = runHomeBaseProtocol(log, nominal, world.home_base.arm_length);
     if (p.result.status != HomeReturnStatus::kOk) {
       out.refused.push_back(log.robot + ": " + toString(p.result.status));
@@ -151,16 +350,69 @@ SharedMapResult shareMaps(const sim::World& world, const MapLimits& limits, cons
       out.refused.push_back(log.robot + ": " + posted.reason);
     }
   }
-  const GridU8& truth = tallest->truth;
+  const GridU8& truth = tallestRobot(runs).truth;
   const Eigen::Vector2d start = runs.front().result.groundtruth.empty()
                                     ? world.robots.front().start.translation()
                                     : runs.front().result.groundtruth.front().pose.translation();
   out.protocol_grid = protocol.grid();
-  out.naive_grid = naive.grid();
+  out.naive_grid = naiveSharedMap(limits, runs);
   out.protocol = computeMapMetrics(*out.protocol_grid, truth, start, &floor);
   out.naive = computeMapMetrics(*out.naive_grid, truth, start, &floor);
   out.computed = true;
   return out;
+}
+
+// The robot is back at the home base and has looked at it: localize, correct and post the
+// sortie (core/agent/cooperation.h), apply the fix to its estimate, import the shared map,
+// and send it out again.
+void endSortie(RobotRun& r, LocalSharedMap& live, double now, double reapproach_m) {
+  const TraverseLog& all = r.mapper->traverse();
+  TraverseLog sortie;
+  sortie.robot = all.robot;
+  sortie.entries.assign(all.entries.begin() + static_cast<std::ptrdiff_t>(r.sortie_begin),
+                        all.entries.end());
+  if (!r.reapproaching) {
+    // Back away from the start (odometry drifted): the home base looks different from
+    // there. Drive to the start by a first fix and look again.
+    const SortieReport first = r.coop->locate(sortie);
+    const double off = (first.fix.translation() - r.home.translation()).norm();
+    if (first.fixed && off > reapproach_m) {
+      r.reapproaching = true;
+      char line[160];
+      std::snprintf(line, sizeof line,
+                    "back %.2f m from the start at %.0f s: driving there by a first fix", off, now);
+      r.result.sortie_log.push_back(line);
+      r.mission->returnAgain(first.correction.inverse() * r.home);
+      return;
+    }
+  }
+  std::optional<Eigen::Vector2d> expected;
+  if (r.reapproaching) expected = r.home.translation();
+  r.reapproaching = false;
+  const SortieReport rep = r.coop->endSortie(sortie, expected);
+  if (rep.fixed) r.mapper->setFrame(rep.correction * r.mapper->frame());
+  const SharedMapSnapshot snap = live.snapshot();
+  if (snap.version > 0) r.mapper->importMap(snap.log_odds, snap.seen);
+  r.sortie_begin = all.entries.size();
+  // The fix against the truth (the simulator knows it; the robot does not).
+  std::string error;
+  if (rep.fixed)
+    for (auto it = r.result.groundtruth.rbegin(); it != r.result.groundtruth.rend(); ++it)
+      if (it->stamp <= rep.fix_stamp + 1e-9) {
+        const Pose2& t = it->pose;
+        char e[96];
+        std::snprintf(e, sizeof e, " (%.1f cm, %.2f deg off the truth)",
+                      100.0 * std::hypot(rep.fix.x - t.x, rep.fix.y - t.y),
+                      std::abs(wrapAngle(rep.fix.theta - t.theta)) * 180.0 / M_PI);
+        error = e;
+        break;
+      }
+  char line[256];
+  std::snprintf(line, sizeof line, "sortie %d at %.0f s: %zu scans, %s%s%s", rep.sortie, now,
+                rep.entries, rep.fixed ? "fixed" : "no fix", error.c_str(),
+                rep.posted ? ", posted" : "");
+  r.result.sortie_log.push_back(std::string(line) + " (" + rep.method + ")");
+  r.mission->continueAfterFix(now);
 }
 
 void drawProgress(double t, double total) {
@@ -187,6 +439,17 @@ RunResult runWorld(const RunOptions& opt) {
 
   sim::Simulator sim(world, opt.seed);
   const MapLimits limits = sim::worldMapLimits(world);
+  // Cooperative autonomous runs share their map sortie by sortie, during the run.
+  const bool cooperative =
+      opt.explore && opt.max_sorties > 1 && world.home_base.corners.size() == 2;
+  if (opt.explore && !(opt.sortie_budget_m > 0.0))
+    throw std::invalid_argument("--sortie-budget: expected a positive number of metres");
+  if (opt.explore && opt.max_sorties < 1)
+    throw std::invalid_argument("--sorties: expected at least 1");
+  if (!(opt.timeline_period_s > 0.0))
+    throw std::invalid_argument("timeline period: expected a positive number of seconds");
+  std::optional<LocalSharedMap> live;
+  if (cooperative) live.emplace(limits, OccupancyConfig{});
   std::vector<RobotRun> runs;
   for (int i = 0; i < robot_count; ++i) {
     const sim::RobotSpec& spec = world.robots[i];
@@ -221,10 +484,17 @@ RunResult runWorld(const RunOptions& opt) {
       MissionConfig mission;
       mission.planning = PlanningMapConfig::forRobot(model.description);
       mission.planner.seed = static_cast<uint32_t>(opt.seed + i);
+      mission.budget_m = opt.sortie_budget_m;
+      mission.max_sorties = cooperative ? opt.max_sorties : 1;
       r.mission = std::make_unique<MissionAgent>(spec.start, mission);
+      if (cooperative) {
+        r.coop = std::make_unique<HomeBaseCooperation>(spec.name, nominalHomeBase(world),
+                                                       world.home_base.arm_length, &*live);
+      }
     }
     r.result.name = spec.name;
     r.last_true = spec.start;
+    r.home = spec.start;
     runs.push_back(std::move(r));
   }
 
@@ -250,6 +520,35 @@ RunResult runWorld(const RunOptions& opt) {
   using Clock = std::chrono::steady_clock;
   auto seconds = [](Clock::time_point a, Clock::time_point b) {
     return std::chrono::duration<double>(b - a).count();
+  };
+  const GridU8 floor = sim::floorMask(world, limits);
+  for (RobotRun& r : runs)
+    r.truth = sim::trueOccupancy(world, limits, sim.description(r.driver->index()).swept_height);
+  const GridU8& shared_truth = tallestRobot(runs).truth;
+  const Eigen::Vector2d home_position = world.robots.front().start.translation();
+  std::vector<TimelineSample> timeline;
+  double next_sample = 0.0;
+  // Coverage and error now: the shared map's (or all robots' maps together) and each robot's.
+  auto sample = [&](double t) {
+    TimelineSample out;
+    out.t = t;
+    std::optional<OccupancyGrid> merged;
+    if (live) merged = live->grid();
+    for (RobotRun& r : runs) {
+      const Pose2 truth = sim.truePose(r.driver->index());
+      const Pose2 estimate = r.mapper->estimate(r.driver->odometry());
+      out.robot_error_m.push_back(std::hypot(truth.x - estimate.x, truth.y - estimate.y));
+      out.robot_coverage.push_back(
+          computeMapMetrics(r.mapper->grid(), r.truth, home_position, &floor).coverage);
+      if (!live) {  // without sharing: what the robots have seen together
+        if (!merged)
+          merged.emplace(r.mapper->grid());
+        else
+          mergeSeen(*merged, r.mapper->grid());
+      }
+    }
+    out.shared_coverage = computeMapMetrics(*merged, shared_truth, home_position, &floor).coverage;
+    return out;
   };
   RunTiming timing;
   double next_sense = 0.0, next_progress = 0.0;
@@ -285,13 +584,23 @@ RunResult runWorld(const RunOptions& opt) {
       }
       r.result.groundtruth.push_back({t, sim.truePose(i)});
       r.result.odometry.push_back({t, r.driver->odometry()});
+      r.result.estimate.push_back({t, r.mapper->estimate(r.driver->odometry())});
       // Drift experiments steer by the true pose (as a person driving the route would), so
       // the path is the intended one and odometry only records it.
-      const Pose2 steer = opt.steer_by_truth ? sim.truePose(i) : r.driver->odometry();
+      const Pose2 steer = opt.steer_by_truth ? sim.truePose(i) : r.result.estimate.back().pose;
+      if (r.mission && runs.size() > 1) {
+        // Teammates report where they believe they are (their estimates share the map frame).
+        std::vector<Eigen::Vector2d> others;
+        for (const RobotRun& o : runs)
+          if (&o != &r) others.push_back(o.mapper->estimate(o.driver->odometry()).translation());
+        r.mission->setTeammates(std::move(others), &r == &runs.front());
+      }
       const MotionCommand cmd = r.mission ? r.mission->update(t, steer, r.mapper->grid(), r.latest,
                                                               r.driver->status().bumped)
                                           : r.follower->update(steer, t);
       r.latest = nullptr;
+      if (r.coop && r.mission->phase() == MissionPhase::kAtHome)
+        endSortie(r, *live, t, opt.reapproach_m);
       r.driver->command(cmd);
       if (recorder)
         recorder->addControl(r.recording, t, r.result.odometry.back().pose, cmd,
@@ -302,6 +611,10 @@ RunResult runWorld(const RunOptions& opt) {
       // A robot without a route stays put for the whole run.
       all_done = all_done &&
                  (r.mission ? r.mission->done() : r.follower->done() && !sim.spec(i).route.empty());
+    }
+    if (t + 1e-9 >= next_sample) {
+      next_sample += opt.timeline_period_s;
+      timeline.push_back(sample(t));
     }
     if (progress && t >= next_progress) {
       drawProgress(t, opt.duration);
@@ -319,18 +632,29 @@ RunResult runWorld(const RunOptions& opt) {
   }
   if (progress) std::fprintf(stderr, "\n");
 
+  if (timeline.empty() || timeline.back().t < sim.time()) timeline.push_back(sample(sim.time()));
   RunResult result;
   result.sim_time_s = sim.time();
   result.timing = timing;
+  result.cooperative = cooperative;
+  result.timeline = std::move(timeline);
+  for (const TimelineSample& s : result.timeline)
+    if (s.shared_coverage >= 0.9) {
+      result.time_to_90_s = s.t;
+      break;
+    }
   for (const RobotRun& r : runs) {
     result.timing.stereo_s += r.mapper->timing().stereo_s;
     result.timing.mapping_s += r.mapper->timing().mapping_s;
   }
-  const GridU8 floor = sim::floorMask(world, limits);
   for (RobotRun& r : runs) {
     const int i = r.driver->index();
     const Pose2 truth = sim.truePose(i), odo = r.driver->odometry();
     r.result.collisions = r.driver->status().contact_events;
+    const sim::ContactCounts contacts = sim.contactCounts(i);
+    r.result.collisions_static = contacts.static_world;
+    r.result.collisions_people = contacts.people;
+    r.result.collisions_robots = contacts.robots;
     r.result.route_complete = r.mission ? r.mission->done() : r.follower->done();
     if (r.mission) {
       r.result.mission_phase = toString(r.mission->phase());
@@ -343,7 +667,14 @@ RunResult runWorld(const RunOptions& opt) {
     r.result.traverse = r.mapper->traverse();
     r.result.odometry_error_m = std::hypot(truth.x - odo.x, truth.y - odo.y);
     r.result.odometry_error_deg = std::abs(wrapAngle(truth.theta - odo.theta)) * 180.0 / M_PI;
-    r.truth = sim::trueOccupancy(world, limits, sim.description(i).swept_height);
+    if (r.coop) {
+      for (const SortieReport& rep : r.coop->reports()) {
+        ++r.result.sorties;
+        r.result.sorties_fixed += rep.fixed;
+        r.result.sorties_posted += rep.posted;
+      }
+      r.result.corrected = r.coop->corrected();
+    }
     r.result.map =
         computeMapMetrics(r.mapper->grid(), r.truth, sim.spec(i).start.translation(), &floor);
     r.result.grid = r.mapper->grid();
@@ -354,7 +685,24 @@ RunResult runWorld(const RunOptions& opt) {
     recorder->setFloor(floor);
     recorder->finish();
   }
-  if (opt.share_maps) result.shared_map = shareMaps(world, limits, floor, runs);
+  if (cooperative) {
+    SharedMapResult& shared = result.shared_map;
+    shared.protocol_grid = live->grid();
+    shared.naive_grid = naiveSharedMap(limits, runs);
+    for (const RobotRun& r : runs) {
+      shared.posts_accepted += r.result.sorties_posted;
+      if (r.result.sorties_posted > 0) shared.posted.push_back(r.result.name);
+      for (const SortieReport& rep : r.coop->reports())
+        if (!rep.posted)
+          shared.refused.push_back(r.result.name + " sortie " + std::to_string(rep.sortie) + ": " +
+                                   rep.method);
+    }
+    shared.protocol = computeMapMetrics(*shared.protocol_grid, shared_truth, home_position, &floor);
+    shared.naive = computeMapMetrics(*shared.naive_grid, shared_truth, home_position, &floor);
+    shared.computed = true;
+  } else if (opt.share_maps) {
+    result.shared_map = shareMaps(world, limits, floor, runs);
+  }
   result.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   result.real_time_factor = result.wall_time_s > 0 ? result.sim_time_s / result.wall_time_s : 0.0;

@@ -35,6 +35,16 @@ struct RunOptions {
   // radial map at its odometry pose); RunResult::shared_map and shared_map*.{pgm,yaml,png}.
   bool share_maps = false;
   bool explore = false;  // autonomous missions (core/agent/mission.h) instead of the routes
+  // Autonomous runs go out in sorties of at most this many metres; after each the robot
+  // localizes at the home base, posts its corrected traverse to the shared map and imports
+  // it (core/agent/cooperation.h), then goes again, at most max_sorties times. With
+  // max_sorties 1 it explores once and the maps are shared after the run (share_maps).
+  double sortie_budget_m = 25.0;
+  int max_sorties = 12;
+  // A robot whose first fix at the end of a sortie puts it farther than this (m) from its
+  // start drives there by that fix and looks again before the sortie is corrected.
+  double reapproach_m = 0.1;
+  double timeline_period_s = 10.0;     // s between samples of coverage and error over time
   std::optional<double> sensing_rate;  // Hz; overrides the world's
   bool progress = false;               // progress bar on stderr
   // Called with every sensing frame and its ground-truth depth (reference camera, metres),
@@ -47,7 +57,10 @@ struct RunOptions {
 struct RobotRunResult {
   std::string name;
   double path_length_m = 0.0;
-  int collisions = 0;
+  int collisions = 0;         // distinct contacts with anything
+  int collisions_static = 0;  // of them, with walls, doors, furniture, the home base
+  int collisions_people = 0;  // with people
+  int collisions_robots = 0;  // with other robots
   int frames = 0;
   bool route_complete = false;
   double odometry_error_m = 0.0;  // final |odometry - truth|
@@ -61,7 +74,21 @@ struct RobotRunResult {
   std::string mission_phase;  // where the mission stopped ("done" when it came home)
   bool exploration_complete = false;
   int goals_reached = 0, goals_failed = 0, safety_stops = 0;
-  std::string mission_event;  // the mission's last event, for people
+  std::string mission_event;            // the mission's last event, for people
+  int sorties = 0;                      // sorties ended at the home base
+  int sorties_fixed = 0;                // of them, localized there
+  int sorties_posted = 0;               // of them, posted to the shared map
+  std::vector<std::string> sortie_log;  // one line per sortie, for people
+  std::vector<StampedPose2> estimate;   // the robot's own pose estimate (map frame)
+  std::vector<StampedPose2> corrected;  // entries posted, at their corrected poses
+};
+
+// Coverage and error over a run, sampled every RunOptions::timeline_period_s.
+struct TimelineSample {
+  double t = 0.0;
+  double shared_coverage = 0.0;        // the shared map (cooperative runs), else the union
+  std::vector<double> robot_coverage;  // each robot's own map
+  std::vector<double> robot_error_m;   // |estimate - truth| per robot
 };
 
 // Wall time per stage of a run, all robots together (s).
@@ -83,6 +110,9 @@ struct SharedMapResult {
 struct RunResult {
   std::vector<RobotRunResult> robots;
   SharedMapResult shared_map;
+  bool cooperative = false;  // the shared map was built during the run, sortie by sortie
+  std::vector<TimelineSample> timeline;
+  double time_to_90_s = -1.0;  // first sample with shared coverage >= 0.9 (-1: never)
   RunTiming timing;
   double sim_time_s = 0.0;
   double wall_time_s = 0.0;

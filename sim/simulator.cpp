@@ -1,5 +1,6 @@
 #include "sim/simulator.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -7,8 +8,12 @@ namespace coopmap::sim {
 
 Simulator::Simulator(World world, uint64_t seed) : world_(std::move(world)), seed_(seed) {
   physics_ = std::make_unique<PhysicsWorld>(world_, 1.0 / world_.physics_rate);
-  for (const PersonSpec& p : world_.people)
-    people_.push_back(physics_->addKinematicCylinder(p.radius, p.height, p.positionAt(0.0)));
+  for (const PersonSpec& p : world_.people) {
+    PersonState s;
+    s.position = p.positionAtWalked(0.0);
+    s.body = physics_->addKinematicCylinder(p.radius, p.height, s.position);
+    people_.push_back(s);
+  }
   for (const DoorSpec& d : world_.doors)
     if (d.scheduled()) doors_.push_back(physics_->addKinematicBox(d.panel()));
 }
@@ -42,8 +47,7 @@ void Simulator::advance(double dt) {
   const int64_t target = static_cast<int64_t>(std::llround((time() + dt) / h));
   while (steps_ < target) {
     const double t_next = (steps_ + 1) * h;
-    for (size_t k = 0; k < people_.size(); ++k)
-      physics_->moveKinematic(people_[k], world_.people[k].positionAt(t_next));
+    walkPeople(t_next);
     size_t door = 0;
     for (const DoorSpec& d : world_.doors)
       if (d.scheduled()) physics_->moveKinematic(doors_[door++], d.center, !d.openAt(t_next));
@@ -55,6 +59,45 @@ void Simulator::advance(double dt) {
       r.odometry->integrate(physics_->wheelVelocity(r.physics_index),
                             physics_->truePose(r.physics_index), h);
   }
+}
+
+// Each person walks on unless a robot, where it stands before this step, makes them wait;
+// waiting adds to their paused time, so their walk resumes where it stopped.
+void Simulator::walkPeople(double t_next) {
+  for (size_t k = 0; k < people_.size(); ++k) {
+    const PersonSpec& p = world_.people[k];
+    PersonState& s = people_[k];
+    const double walked = std::max(0.0, t_next - p.start_time - s.paused);
+    s.yielding = false;
+    if (walked > s.walked) {
+      for (const RobotState& r : robots_)
+        if (p.yieldsTo(s.walked, physics_->truePose(r.physics_index).translation(),
+                       r.config.description.body_radius)) {
+          s.yielding = true;
+          break;
+        }
+    }
+    if (s.yielding) {
+      s.paused += walked - s.walked;
+    } else {
+      s.walked = walked;
+      s.position = p.positionAtWalked(s.walked);
+    }
+    physics_->moveKinematic(s.body, s.position);
+  }
+}
+
+std::vector<Eigen::Vector2d> Simulator::personPositions() const {
+  std::vector<Eigen::Vector2d> out;
+  out.reserve(people_.size());
+  for (const PersonState& s : people_) out.push_back(s.position);
+  return out;
+}
+
+bool Simulator::personYielding(int person) const { return people_.at(person).yielding; }
+
+ContactCounts Simulator::contactCounts(int robot) const {
+  return physics_->contactCounts(robots_.at(robot).physics_index);
 }
 
 Eigen::Isometry3d Simulator::cameraPose(int robot, int camera) const {
@@ -85,8 +128,10 @@ TrinocularFrame Simulator::capture(int robot, cv::Mat* truth_depth) {
     const Pose2 p = truePose(k);
     others.push_back({{p.x, p.y}, d.body_radius, d.body_height});
   }
-  for (const PersonSpec& p : world_.people)
-    others.push_back({p.positionAt(time()), p.radius, p.height});
+  for (size_t k = 0; k < people_.size(); ++k) {
+    const PersonSpec& p = world_.people[k];
+    others.push_back({people_[k].position, p.radius, p.height});
+  }
   TrinocularFrame f;
   f.stamp = time();
   f.odometry = odometry(robot);

@@ -57,6 +57,15 @@ class Simulator {
   // Pose of a robot's camera (0 reference, 1 horizontal, 2 vertical) in the 3D world.
   Eigen::Isometry3d cameraPose(int robot, int camera) const;
 
+  // Where the world's people stand now (m, world), one per World::people in order. People
+  // wait for robots (PersonSpec::yieldsTo), so this is not PersonSpec::positionAt(time()).
+  std::vector<Eigen::Vector2d> personPositions() const;
+  // True if the person stood waiting for a robot in the last step.
+  bool personYielding(int person) const;
+  // A robot's distinct contacts since start, by what it touched (status().contact_events
+  // counts them all as one kind).
+  ContactCounts contactCounts(int robot) const;
+
  private:
   struct RobotState {
     RobotSpec spec;
@@ -70,14 +79,23 @@ class Simulator {
     double segment_done = 0.0;  // rad turned or m driven, by the encoders
     double last_theta = 0.0;
   };
+  // A world person's body and walk: walked = max(0, t - start_time - paused).
+  struct PersonState {
+    int body = 0;         // kinematic body
+    double paused = 0.0;  // s spent waiting for robots
+    double walked = 0.0;  // s spent walking
+    Eigen::Vector2d position{0.0, 0.0};
+    bool yielding = false;
+  };
   void driveSegment(RobotState& r);
+  void walkPeople(double t_next);  // moves the people to where they are at t_next
   World world_;
   uint64_t seed_;
   std::unique_ptr<PhysicsWorld> physics_;
   std::unique_ptr<Renderer> renderer_;  // created with the first robot (needs its intrinsics)
   std::vector<RobotState> robots_;
-  std::vector<int> people_;  // kinematic bodies, one per world person
-  std::vector<int> doors_;   // kinematic bodies, one per scheduled door
+  std::vector<PersonState> people_;  // one per world person
+  std::vector<int> doors_;           // kinematic bodies, one per scheduled door
   int64_t steps_ = 0;
 };
 

@@ -12,6 +12,15 @@ Mapper::Mapper(const RobotDescription& robot, const MapLimits& limits, const Map
   config_.radial.validate();
 }
 
+void Mapper::setFrame(const Pose2& X_MO) {
+  frame_ = X_MO;
+  framed_ = true;
+}
+
+void Mapper::importMap(const std::vector<int16_t>& log_odds, const std::vector<uint8_t>& seen) {
+  grid_.assign(log_odds, seen);
+}
+
 const RadialMap& Mapper::process(const TrinocularFrame& frame, MotionSegment segment) {
   using Clock = std::chrono::steady_clock;
   const auto t0 = Clock::now();
@@ -19,8 +28,10 @@ const RadialMap& Mapper::process(const TrinocularFrame& frame, MotionSegment seg
   const auto t1 = Clock::now();
   TraverseEntry& entry = traverse_.entries.emplace_back();
   entry.segment = segment;
-  entry.scan = buildRadialMap(disparity_, robot_, config_.radial, frame.stamp, frame.odometry);
-  grid_.insert(entry.scan, frame.odometry);
+  const Pose2 pose = estimate(frame.odometry);
+  entry.scan = buildRadialMap(disparity_, robot_, config_.radial, frame.stamp, pose);
+  raw_odometry_.push_back(frame.odometry);
+  grid_.insert(entry.scan, pose);
   const auto t2 = Clock::now();
   timing_.stereo_s += std::chrono::duration<double>(t1 - t0).count();
   timing_.mapping_s += std::chrono::duration<double>(t2 - t1).count();

@@ -39,6 +39,19 @@ class Mapper {
                            MotionSegment segment = MotionSegment::kStop);
 
   const OccupancyGrid& grid() const { return grid_; }
+
+  // The robot's pose estimate in the map frame is X_MO * odometry; identity at first (the
+  // map frame is the odometry frame at the start). A home-base fix changes it: from then on
+  // scans are inserted, and logged, at the corrected estimate.
+  void setFrame(const Pose2& X_MO);
+  const Pose2& frame() const { return frame_; }
+  Pose2 estimate(const Pose2& odometry) const { return framed_ ? frame_ * odometry : odometry; }
+
+  // Replaces the robot's map with an imported one (the shared map), same limits and rule.
+  // Throws std::invalid_argument when the layers do not fit.
+  void importMap(const std::vector<int16_t>& log_odds, const std::vector<uint8_t>& seen);
+  // The raw odometry of every traverse entry (the log holds the estimate), for naive sharing.
+  const std::vector<Pose2>& rawOdometry() const { return raw_odometry_; }
   const cv::Mat& lastDisparity() const { return disparity_; }
   const TraverseLog& traverse() const { return traverse_; }
   void setRobotName(const std::string& name) { traverse_.robot = name; }
@@ -53,6 +66,9 @@ class Mapper {
   cv::Mat disparity_;
   StereoStats stats_;
   TraverseLog traverse_;
+  std::vector<Pose2> raw_odometry_;
+  Pose2 frame_;
+  bool framed_ = false;
   MapperTiming timing_;
 };
 

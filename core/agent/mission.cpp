@@ -30,6 +30,18 @@ void MissionConfig::validate() const {
   positive("goal_timeout_factor", goal_timeout_factor);
   positive("backoff_s", backoff_s);
   positive("escape_radius", escape_radius);
+  positive("team_distance", team_distance);
+  positive("team_half_angle", team_half_angle);
+  positive("team_wait_s", team_wait_s);
+  positive("team_radius", team_radius);
+  positive("look_from_m", look_from_m);
+  if (max_return_bumps < 1)
+    throw std::invalid_argument(
+        "mission config: field 'max_return_bumps': expected at least 1, got " +
+        std::to_string(max_return_bumps));
+  if (max_sorties < 1)
+    throw std::invalid_argument("mission config: field 'max_sorties': expected at least 1, got " +
+                                std::to_string(max_sorties));
   if (!(look_wait_s >= 0.0))
     throw std::invalid_argument(
         "mission config: field 'look_wait_s': expected a number >= 0, got " +
@@ -50,6 +62,8 @@ const char* toString(MissionPhase p) {
       return "return";
     case MissionPhase::kLookAgain:
       return "look at home again";
+    case MissionPhase::kAtHome:
+      return "at home";
     case MissionPhase::kDone:
       return "done";
   }
@@ -58,6 +72,7 @@ const char* toString(MissionPhase p) {
 
 MissionAgent::MissionAgent(const Pose2& home, const MissionConfig& config)
     : home_(home),
+      target_(home),
       config_(config),
       explorer_(config.frontiers, config.planner),
       planner_(config.planner) {
@@ -85,6 +100,16 @@ PlanningMap MissionAgent::planningMap(const OccupancyGrid& map, bool allow_unkno
     for (int ix = 0; ix < lim.width; ++ix)
       states.at(ix, iy) =
           visited_.cells.empty() || !visited_.at(ix, iy) ? map.state(ix, iy) : CellState::kFree;
+  // Teammates are obstacles while they stand where they are.
+  const double radius = config_.team_radius;
+  const int n = static_cast<int>(std::ceil(radius / lim.resolution));
+  for (const Eigen::Vector2d& p : teammates_) {
+    const int cx = lim.cellX(p.x()), cy = lim.cellY(p.y());
+    for (int iy = cy - n; iy <= cy + n; ++iy)
+      for (int ix = cx - n; ix <= cx + n; ++ix)
+        if (lim.contains(ix, iy) && (lim.cellCenter(ix, iy) - p).norm() <= radius)
+          states.at(ix, iy) = CellState::kOccupied;
+  }
   PlanningMapConfig c = config_.planning;
   c.allow_unknown = allow_unknown;
   return PlanningMap(states, c);
@@ -152,25 +177,70 @@ void MissionAgent::chooseGoal(double now, const Pose2& odometry, const Occupancy
 void MissionAgent::goHome(double now, const Pose2& odometry, const OccupancyGrid& map) {
   phase_ = MissionPhase::kReturn;
   has_goal_ = false;
-  PlanResult plan = planner_.plan(planningMap(map, false), odometry, home_.translation());
-  if (!plan.solved()) plan = planner_.plan(planningMap(map, true), odometry, home_.translation());
+  PlanResult plan = planner_.plan(planningMap(map, false), odometry, target_.translation());
+  if (!plan.solved()) plan = planner_.plan(planningMap(map, true), odometry, target_.translation());
   if (plan.solved()) {
     path_ = plan.path;
     startRoute(routeOf(path_.waypoints), now);
   } else {
     path_ = PlannedPath{};
-    startRoute({{home_.translation(), false, 0.0, 0.0}}, now);  // straight: nothing better
+    startRoute({{target_.translation(), false, 0.0, 0.0}}, now);  // straight: nothing better
   }
+}
+
+void MissionAgent::continueAfterFix(double now) {
+  if (phase_ != MissionPhase::kAtHome) return;
+  if (exploration_complete_ || sortie_ >= config_.max_sorties) {
+    phase_ = MissionPhase::kDone;
+    return;
+  }
+  ++sortie_;
+  target_ = home_;
+  return_bumps_ = 0;
+  phase_ = MissionPhase::kExplore;
+  sortie_start_ = now;
+  travelled_ = 0.0;
+  pose_jumped_ = true;
+  has_goal_ = false;
+  follower_.reset();
+  last_event_ = "sortie " + std::to_string(sortie_);
+}
+
+void MissionAgent::setTeammates(std::vector<Eigen::Vector2d> positions, bool priority) {
+  teammates_ = std::move(positions);
+  priority_ = priority;
+}
+
+bool MissionAgent::teammateAhead(const Pose2& pose) const {
+  for (const Eigen::Vector2d& p : teammates_) {
+    const Eigen::Vector2d to = p - pose.translation();
+    if (to.norm() < config_.team_distance &&
+        std::abs(wrapAngle(std::atan2(to.y(), to.x()) - pose.theta)) < config_.team_half_angle)
+      return true;
+  }
+  return false;
+}
+
+void MissionAgent::returnAgain(const Pose2& home) {
+  if (phase_ != MissionPhase::kAtHome) return;
+  target_ = home;
+  return_bumps_ = 0;
+  phase_ = MissionPhase::kReturn;
+  plan_home_ = true;
+  pose_jumped_ = true;
+  follower_.reset();
+  last_event_ = "driving to the home pose by the fix, to look again";
 }
 
 MotionCommand MissionAgent::update(double now, const Pose2& odometry, const OccupancyGrid& map,
                                    const RadialMap* latest, bool bumped) {
   if (start_time_ < 0.0) {
-    start_time_ = now;
+    start_time_ = sortie_start_ = now;
     last_pose_ = odometry;
     startRoute({{home_.translation(), true, config_.look_turn_rate, config_.look_wait_s}}, now);
   }
-  travelled_ += std::hypot(odometry.x - last_pose_.x, odometry.y - last_pose_.y);
+  if (!pose_jumped_) travelled_ += std::hypot(odometry.x - last_pose_.x, odometry.y - last_pose_.y);
+  pose_jumped_ = false;
   last_pose_ = odometry;
   markVisited(map, odometry);
   // Touching something: back off, give the goal up, plan anew.
@@ -189,8 +259,45 @@ MotionCommand MissionAgent::update(double now, const Pose2& odometry, const Occu
   }
   if (backoff_until_ >= 0.0 && now >= backoff_until_) {
     backoff_until_ = -1.0;
-    if (phase_ == MissionPhase::kReturn) goHome(now, odometry, map);
+    if (phase_ == MissionPhase::kReturn) {
+      if (++return_bumps_ >= config_.max_return_bumps &&
+          (odometry.translation() - target_.translation()).norm() < config_.look_from_m) {
+        // Near home but the way is blocked (by what drift hides from the map, or a
+        // teammate): look at the home base from here; a fix will bring it home.
+        phase_ = MissionPhase::kLookAgain;
+        startRoute({{odometry.translation(), true, config_.look_turn_rate, 0.0}}, now);
+        last_event_ = "home blocked: looking from here";
+        return last_command_ = MotionCommand::stop();
+      }
+      goHome(now, odometry, map);
+    }
   }
+
+  // A teammate ahead: stop and wait; after a while plan around it.
+  if (moving && follower_ && last_command_.linear > 0.0 && teammateAhead(odometry)) {
+    if (team_wait_until_ < 0.0) {
+      ++team_stops_;
+      team_wait_until_ = now + (priority_ ? 0.25 : 1.0) * config_.team_wait_s;
+      last_event_ = "teammate ahead: waiting";
+    }
+    if (now < team_wait_until_) return MotionCommand::stop();  // last_command_ kept: re-checked
+    team_wait_until_ = -1.0;
+    follower_.reset();
+    last_event_ = "teammate ahead: planning around it";
+    if (phase_ == MissionPhase::kReturn) {
+      goHome(now, odometry, map);
+    } else if (has_goal_) {
+      const PlanResult around = planner_.plan(planningMap(map, false), odometry, goal_);
+      if (around.solved()) {
+        path_ = around.path;
+        startRoute(routeOf(path_.waypoints), now);
+      } else {
+        has_goal_ = false;  // not blacklisted: the way is only blocked for now
+      }
+    }
+    return last_command_ = MotionCommand::stop();
+  }
+  if (team_wait_until_ >= 0.0 && !teammateAhead(odometry)) team_wait_until_ = -1.0;
 
   switch (phase_) {
     case MissionPhase::kLookAtHome: {
@@ -201,7 +308,7 @@ MotionCommand MissionAgent::update(double now, const Pose2& odometry, const Occu
       return MotionCommand::stop();
     }
     case MissionPhase::kExplore: {
-      if (travelled_ >= config_.budget_m || now - start_time_ >= config_.budget_s) {
+      if (travelled_ >= config_.budget_m || now - sortie_start_ >= config_.budget_s) {
         last_event_ = "budget spent";
         goHome(now, odometry, map);
         return MotionCommand::stop();
@@ -265,6 +372,11 @@ MotionCommand MissionAgent::update(double now, const Pose2& odometry, const Occu
       return last_command_ = follower_->update(odometry, now);
     }
     case MissionPhase::kReturn: {
+      if (plan_home_) {
+        plan_home_ = false;
+        goHome(now, odometry, map);
+        return last_command_ = MotionCommand::stop();
+      }
       const bool driving = last_command_.linear > 0.0;
       if (latest && driving && obstacleAhead(*latest)) {
         ++safety_stops_;
@@ -273,15 +385,17 @@ MotionCommand MissionAgent::update(double now, const Pose2& odometry, const Occu
       }
       if (!follower_->done()) return last_command_ = follower_->update(odometry, now);
       phase_ = MissionPhase::kLookAgain;
-      startRoute({{home_.translation(), true, config_.look_turn_rate, 0.0}}, now);
+      startRoute({{target_.translation(), true, config_.look_turn_rate, 0.0}}, now);
       return last_command_ = MotionCommand::stop();
     }
     case MissionPhase::kLookAgain: {
       const MotionCommand cmd = follower_->update(odometry, now);
       if (!follower_->done()) return last_command_ = cmd;
-      phase_ = MissionPhase::kDone;
+      phase_ = config_.max_sorties > 1 ? MissionPhase::kAtHome : MissionPhase::kDone;
+      follower_.reset();
       return last_command_ = MotionCommand::stop();
     }
+    case MissionPhase::kAtHome:
     case MissionPhase::kDone:
       break;
   }

@@ -5,6 +5,7 @@
 // the robot's map and its latest radial map into motion commands, in the odometry frame.
 #pragma once
 
+#include <algorithm>
 #include <memory>
 #include <string>
 #include <vector>
@@ -30,6 +31,22 @@ struct MissionConfig {
                                      // driving time is given up (blacklisted)
   double backoff_s = 1.5;            // s of backing off at 0.1 m/s after a bump
   double escape_radius = 0.6;        // m: a robot on a blocked cell steps to a free one this near
+  // Sorties: with more than one, the budget is per sortie, and after each look at home the
+  // mission waits (phase kAtHome) until the caller has localized it, corrected and shared
+  // its traverse and imported the shared map (continueAfterFix), then goes again.
+  int max_sorties = 1;
+  // Teammates (setTeammates): one closer than team_distance ahead (within team_half_angle)
+  // stops this robot; it waits, and after team_wait_s plans around the teammate (drawn into
+  // its planning map as a disc of team_radius). The robot with priority waits only
+  // team_wait_s / 4: one of two robots facing each other moves first.
+  double team_distance = 1.0;     // m, centre to centre
+  double team_half_angle = 1.05;  // rad
+  double team_wait_s = 6.0;       // s
+  double team_radius = 0.35;      // m: a teammate's body and a margin
+  // Bumped this many times on the way home within look_from_m of it, the robot looks at the
+  // home base from where it is (the fix then takes it home).
+  int max_return_bumps = 2;
+  double look_from_m = 2.0;
   FrontierConfig frontiers;
   PlannerConfig planner;
   PlanningMapConfig planning;
@@ -37,7 +54,7 @@ struct MissionConfig {
   void validate() const;  // throws std::invalid_argument naming the field
 };
 
-enum class MissionPhase { kLookAtHome, kExplore, kReturn, kLookAgain, kDone };
+enum class MissionPhase { kLookAtHome, kExplore, kReturn, kLookAgain, kAtHome, kDone };
 const char* toString(MissionPhase p);
 
 class MissionAgent {
@@ -51,6 +68,18 @@ class MissionAgent {
   MotionCommand update(double now, const Pose2& odometry, const OccupancyGrid& map,
                        const RadialMap* latest, bool bumped = false);
 
+  // In phase kAtHome: the caller has dealt with the sortie; go again (phase kExplore) unless
+  // exploration is complete or the sorties are spent (phase kDone). The robot's pose
+  // estimate may have jumped (a home-base fix): the next update's pose is taken as it is.
+  void continueAfterFix(double now);
+  // In phase kAtHome: drive to `home` (the home pose as the robot's estimate now places it:
+  // a fix showed the estimate off) and look again there, then wait in kAtHome once more.
+  void returnAgain(const Pose2& home);
+  int sortie() const { return sortie_; }  // 1 for the first
+  // Where the teammates are now (map frame, as they report it) and whether this robot has
+  // the right of way over them (e.g. the lower index). Call before update.
+  void setTeammates(std::vector<Eigen::Vector2d> positions, bool priority);
+  int teamStops() const { return team_stops_; }
   MissionPhase phase() const { return phase_; }
   bool done() const { return phase_ == MissionPhase::kDone; }
   bool explorationComplete() const { return exploration_complete_; }
@@ -68,6 +97,7 @@ class MissionAgent {
   void goHome(double now, const Pose2& odometry, const OccupancyGrid& map);
 
   Pose2 home_;
+  Pose2 target_;  // where "home" is this sortie (home_, or returnAgain's)
   MissionConfig config_;
   MissionPhase phase_ = MissionPhase::kLookAtHome;
   std::unique_ptr<RouteFollower> follower_;
@@ -80,7 +110,17 @@ class MissionAgent {
   double backoff_until_ = -1.0;
   bool escaping_ = false;
   double last_check_ = 0.0;
-  double start_time_ = -1.0;
+  double start_time_ = -1.0;    // of the mission
+  double sortie_start_ = -1.0;  // of the current sortie
+  int sortie_ = 1;
+  bool pose_jumped_ = false;
+  bool plan_home_ = false;  // returnAgain: plan the way home at the next update
+  int return_bumps_ = 0;
+  std::vector<Eigen::Vector2d> teammates_;
+  bool priority_ = false;
+  double team_wait_until_ = -1.0;  // waiting for a teammate ahead until then
+  int team_stops_ = 0;
+  bool teammateAhead(const Pose2& pose) const;
   double travelled_ = 0.0;
   Pose2 last_pose_;
   bool exploration_complete_ = false;

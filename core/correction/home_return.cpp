@@ -35,6 +35,8 @@ void HomeReturnConfig::validate() const {
   check("register_radius", register_radius);
   check("register_max_turn", register_max_turn);
   check("max_separation_error", max_separation_error);
+  check("max_correction_rad", max_correction_rad);
+  check("max_correction_m", max_correction_m);
   if (!(search_radius >= 0.0))
     throw std::invalid_argument("home return: field 'search_radius': expected a number >= 0, got " +
                                 std::to_string(search_radius));
@@ -56,16 +58,25 @@ std::vector<size_t> turnInPlaceEntries(const TraverseLog& log, bool at_end, doub
   std::vector<size_t> out;
   const size_t n = log.entries.size();
   if (n == 0) return out;
-  const Pose2 anchor =
-      at_end ? log.entries.back().scan.odometry : log.entries.front().scan.odometry;
+  // At the end, the turn is anchored at the last entry that turned: a robot standing after
+  // its turn may be nudged (by a teammate, a person) and is then no longer where it turned.
+  size_t anchor = at_end ? n - 1 : 0;
+  if (at_end)
+    for (size_t i = n - 1; i > 0; --i)
+      if (std::abs(wrapAngle(log.entries[i].scan.odometry.theta -
+                             log.entries[i - 1].scan.odometry.theta)) > 1e-3) {
+        anchor = i;
+        break;
+      }
+  const Pose2 a = log.entries[anchor].scan.odometry;
   auto near = [&](size_t i) {
     const Pose2& p = log.entries[i].scan.odometry;
-    return std::hypot(p.x - anchor.x, p.y - anchor.y) < turn_radius;
+    return std::hypot(p.x - a.x, p.y - a.y) < turn_radius;
   };
   if (at_end) {
-    size_t i = n;
+    size_t i = anchor + 1;
     while (i > 0 && near(i - 1)) --i;
-    for (; i < n; ++i) out.push_back(i);
+    for (size_t j = i; j < n && (j <= anchor || near(j)); ++j) out.push_back(j);
   } else {
     for (size_t i = 0; i < n && near(i); ++i) out.push_back(i);
   }
@@ -97,9 +108,6 @@ OccupancyGrid localMap(const TraverseLog& log, const MapLimits& limits,
   return grid;
 }
 
-namespace {
-
-// The entries of the start turn taken before it had turned more than register_max_turn.
 std::vector<size_t> referenceEntries(const TraverseLog& log, const HomeReturnConfig& config) {
   std::vector<size_t> entries;
   double turned = 0.0;
@@ -112,8 +120,6 @@ std::vector<size_t> referenceEntries(const TraverseLog& log, const HomeReturnCon
   }
   return entries;
 }
-
-}  // namespace
 
 HomeBaseRegistration registerHomeBaseFromLog(const TraverseLog& log, const Eigen::Vector2d& first,
                                              const Eigen::Vector2d& second, double arm_length,
@@ -169,9 +175,15 @@ HomeReturn localizeFromLog(const TraverseLog& log, const HomeBase& home, double 
       findHomeBase(CornerDetector(classifyCells(whole), corners), home, at_turn, center,
                    config.local_radius, config.max_separation_error);
   HomeBaseFix fix = rough;
+  auto plausible = [&](const Pose2& correction) {
+    return std::abs(correction.theta) <= config.max_correction_rad &&
+           ((correction * at_turn).translation() - center).norm() <= config.max_correction_m;
+  };
+  if (fix.status == HomeBaseStatus::kOk && !plausible(fix.correction))
+    fix.status = HomeBaseStatus::kGeometryMismatch;
   size_t entry = turn.back();
   std::vector<size_t> facing;
-  if (rough.status == HomeBaseStatus::kOk) {
+  if (fix.status == HomeBaseStatus::kOk) {
     const Eigen::Vector2d mid = 0.5 * (rough.first.position + rough.second.position);
     facing = entriesFacing(log, turn, mid, config.facing_half_angle);
     if (facing.size() >= 3) {
@@ -180,7 +192,7 @@ HomeReturn localizeFromLog(const TraverseLog& log, const HomeBase& home, double 
       const HomeBaseFix refined =
           localizeAtHomeBase(detector, home, log.entries[facing[facing.size() / 2]].scan.odometry,
                              0.3, config.max_separation_error, rough.correction);
-      if (refined.status == HomeBaseStatus::kOk) {
+      if (refined.status == HomeBaseStatus::kOk && plausible(refined.correction)) {
         fix = refined;
         entry = facing[facing.size() / 2];
       }
@@ -212,16 +224,20 @@ HomeReturn localizeFromLog(const TraverseLog& log, const HomeBase& home, double 
       const std::vector<Eigen::Vector2d> pts = aligner.obstaclePoints(all, 8);
       const Pose2 start = log.entries.front().scan.odometry;
       const int steps = static_cast<int>(std::floor(config.search_radius / 0.1));
+      // A point counts when within what the 10 cm, 2 degree grid can be off at 3 m.
+      const double sweep_cells = std::max(config.alignment.robust_scale, 0.12 / config.resolution);
       std::vector<std::pair<double, Pose2>> per_heading;
       for (int k = 0; k < 180; ++k) {
-        const double heading = wrapAngle(at_turn.theta + k * M_PI / 90.0);
+        const double turn_by = wrapAngle(k * M_PI / 90.0);
+        if (std::abs(turn_by) > config.max_correction_rad + 1e-9) continue;
+        const double heading = wrapAngle(at_turn.theta + turn_by);
         std::pair<double, Pose2> best{-1.0, Pose2()};
         for (int i = -steps; i <= steps; ++i)
           for (int j = -steps; j <= steps; ++j) {
             if (std::hypot(i, j) > steps) continue;
             const Pose2 g =
                 Pose2(start.x + 0.1 * i, start.y + 0.1 * j, heading) * at_turn.inverse();
-            const double sc = aligner.score(pts, g);
+            const double sc = aligner.score(pts, g, sweep_cells);
             if (sc > best.first) best = {sc, g};
           }
         per_heading.push_back(best);
@@ -236,6 +252,12 @@ HomeReturn localizeFromLog(const TraverseLog& log, const HomeBase& home, double 
         if (guesses.size() >= 5) break;
       }
     }
+    std::vector<size_t> best_view;
+    size_t best_entry = entry;
+    double best_score = -1.0;
+    std::vector<const RadialMap*> turn_scans;
+    for (size_t i : turn) turn_scans.push_back(&log.entries[i].scan);
+    const std::vector<Eigen::Vector2d> turn_points = aligner.obstaclePoints(turn_scans, 4);
     for (const Pose2& guess : guesses) {
       std::vector<size_t> view = facing;
       size_t view_entry = entry;
@@ -250,13 +272,24 @@ HomeReturn localizeFromLog(const TraverseLog& log, const HomeBase& home, double 
         const AlignmentResult second = tight.align(scans, a.correction);
         if (second.ok) a = second;
       }
-      if (&guess == &guesses.front()) out.alignment = a;  // the first reason if all fail
-      if (a.ok) {
-        out.alignment = a;
-        facing = view;
-        entry = view_entry;
-        break;
+      if (a.ok && !plausible(a.correction)) {
+        a.ok = false;
+        a.message = "the alignment moved the robot farther than it can be off";
       }
+      if (&guess == &guesses.front() && !out.alignment.ok) out.alignment = a;  // first reason
+      // Every guess is tried; the alignment that puts most of the whole turn's points on
+      // the reference's obstacles wins (a wrong heading can align its own view too).
+      const double sc = a.ok ? aligner.score(turn_points, a.correction) : -1.0;
+      if (a.ok && (!out.alignment.ok || sc > best_score)) {
+        out.alignment = a;
+        best_score = sc;
+        best_view = view;
+        best_entry = view_entry;
+      }
+    }
+    if (out.alignment.ok) {
+      facing = best_view;
+      entry = best_entry;
     }
     if (out.alignment.ok) {
       // Last, only the scans that look the way the reference scans looked: stereo's own

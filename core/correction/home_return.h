@@ -3,6 +3,7 @@
 // local map of the return turn give its true pose, the observation drift correction needs.
 #pragma once
 
+#include <cmath>
 #include <optional>
 #include <string>
 #include <vector>
@@ -32,13 +33,20 @@ struct HomeReturnConfig {
   double search_radius = 1.0;           // m: without a corner fix, the robot is searched for
                                         // within this of the start (it believes it is home)
   double max_separation_error = 0.1;    // m, observed vs registered corner separation
-  CornerConfig corners;                 // arm_cells is set from the home base's arm length
-  AlignmentConfig alignment;            // dense refinement against the reference map
-  void validate() const;                // throws std::invalid_argument naming the field
+  // How far the robot's estimate can be off (a robot that was localized at its last
+  // return knows its pose better than one back from its first long tour): fixes that
+  // turn it more than max_correction_rad or move it more than max_correction_m are other
+  // corners mistaken for the home base, and the heading sweep stays within the bound.
+  double max_correction_rad = M_PI;
+  double max_correction_m = 10.0;
+  CornerConfig corners;       // arm_cells is set from the home base's arm length
+  AlignmentConfig alignment;  // dense refinement against the reference map
+  void validate() const;      // throws std::invalid_argument naming the field
 };
 
 // Entries of the turn in place at the start (at_end = false) or end of a log: the run of
-// consecutive entries within `turn_radius` of the first (last) entry.
+// consecutive entries within `turn_radius` of the first entry, or at the end of the last
+// entry that turned (entries after it, nudged farther away, are left out).
 std::vector<size_t> turnInPlaceEntries(const TraverseLog& log, bool at_end, double turn_radius);
 
 // Of `entries`, those whose odometry heading points at `target` (odometry frame, m) within
@@ -58,6 +66,10 @@ OccupancyGrid localMap(const TraverseLog& log, const MapLimits& limits,
 HomeBaseRegistration registerHomeBaseFromLog(const TraverseLog& log, const Eigen::Vector2d& first,
                                              const Eigen::Vector2d& second, double arm_length,
                                              const HomeReturnConfig& config = {});
+
+// The entries of the start turn taken before it had turned more than register_max_turn
+// (odometry still exact there): the reference scans.
+std::vector<size_t> referenceEntries(const TraverseLog& log, const HomeReturnConfig& config = {});
 
 // The reference map of the home base: the scans of the start turn taken before the robot
 // had turned more than register_max_turn (its odometry is still exact there, so this map

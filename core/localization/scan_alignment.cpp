@@ -7,6 +7,7 @@
 #include <ceres/solver.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <stdexcept>
 
 #include <opencv2/core/mat.hpp>
@@ -47,6 +48,12 @@ void AlignmentConfig::validate() const {
                                   "': expected a positive number, got " + std::to_string(v));
   };
   check("max_range", max_range);
+  check("weight_range", weight_range);
+  if (!(range_exponent >= 0.0 && range_exponent <= 4.0))
+    throw std::invalid_argument(
+        "alignment: field 'range_exponent': expected a number in [0, 4], "
+        "got " +
+        std::to_string(range_exponent));
   check("robust_scale", robust_scale);
   check("inlier_cells", inlier_cells);
   check("min_inlier_share", min_inlier_share);
@@ -76,7 +83,8 @@ double ScanAligner::distance(const Eigen::Vector2d& q) const {
 }
 
 std::vector<Eigen::Vector2d> ScanAligner::points(const std::vector<const RadialMap*>& scans,
-                                                 const Pose2& guess) const {
+                                                 const Pose2& guess,
+                                                 std::vector<double>* weights) const {
   // Obstacle points in the odometry frame; only those the reference has seen around.
   const MapLimits& lim = reference_.limits();
   std::vector<Eigen::Vector2d> out;
@@ -91,6 +99,9 @@ std::vector<Eigen::Vector2d> ScanAligner::points(const std::vector<const RadialM
       if (!lim.contains(ix, iy)) continue;
       if (!reference_.seen(ix, iy) && field_.at<float>(iy, ix) > config_.robust_scale) continue;
       out.push_back(p);
+      if (weights)
+        weights->push_back(
+            std::pow(std::min(1.0, config_.weight_range / r.range), config_.range_exponent));
     }
   return out;
 }
@@ -110,9 +121,11 @@ std::vector<Eigen::Vector2d> ScanAligner::obstaclePoints(const std::vector<const
   return out;
 }
 
-double ScanAligner::score(const std::vector<Eigen::Vector2d>& points, const Pose2& guess) const {
+double ScanAligner::score(const std::vector<Eigen::Vector2d>& points, const Pose2& guess,
+                          double within_cells) const {
+  const double within = within_cells > 0.0 ? within_cells : config_.robust_scale;
   int near = 0;
-  for (const Eigen::Vector2d& p : points) near += distance(guess * p) <= config_.robust_scale;
+  for (const Eigen::Vector2d& p : points) near += distance(guess * p) <= within;
   return points.empty() ? 0.0 : static_cast<double>(near) / points.size();
 }
 
@@ -130,7 +143,8 @@ AlignmentResult ScanAligner::align(const std::vector<const RadialMap*>& scans,
   const MapLimits& lim = reference_.limits();
   const Field field(field_.ptr<float>(), 0, lim.height, 0, lim.width);
   const Interpolator interpolator(field);
-  const std::vector<Eigen::Vector2d> pts = points(scans, guess);
+  std::vector<double> weights;
+  const std::vector<Eigen::Vector2d> pts = points(scans, guess, &weights);
   result.points = static_cast<int>(pts.size());
   if (result.points < config_.min_points) {
     result.message = std::to_string(result.points) + " obstacle points in the reference's view, " +
@@ -139,10 +153,13 @@ AlignmentResult ScanAligner::align(const std::vector<const RadialMap*>& scans,
   }
   double pose[3] = {guess.x, guess.y, guess.theta};
   ceres::Problem problem;
-  for (const Eigen::Vector2d& p : pts)
+  for (size_t i = 0; i < pts.size(); ++i) {
+    ceres::LossFunction* loss = new ceres::TukeyLoss(config_.robust_scale);
+    if (weights[i] < 1.0) loss = new ceres::ScaledLoss(loss, weights[i], ceres::TAKE_OWNERSHIP);
     problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PointResidual, 1, 3>(
-                                 new PointResidual(&interpolator, p, lim)),
-                             new ceres::TukeyLoss(config_.robust_scale), pose);
+                                 new PointResidual(&interpolator, pts[i], lim)),
+                             loss, pose);
+  }
   ceres::Solver::Options options;
   options.max_num_iterations = config_.max_iterations;
   options.num_threads = 1;

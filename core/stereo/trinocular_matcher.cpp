@@ -8,6 +8,7 @@
 #include <string>
 
 #include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
 
 namespace coopmap {
 
@@ -27,6 +28,28 @@ void accumulateGradient(const uint8_t* __restrict up, const uint8_t* __restrict 
 }
 }  // namespace
 
+const char* toString(StereoConfig::Photometric p) {
+  switch (p) {
+    case StereoConfig::Photometric::kNone:
+      return "none";
+    case StereoConfig::Photometric::kGlobal:
+      return "global";
+    case StereoConfig::Photometric::kLocalMean:
+      return "local";
+  }
+  return "?";
+}
+
+StereoConfig::Photometric parsePhotometric(const std::string& name) {
+  for (auto p : {StereoConfig::Photometric::kNone, StereoConfig::Photometric::kGlobal,
+                 StereoConfig::Photometric::kLocalMean})
+    if (name == toString(p)) return p;
+  throw std::invalid_argument(
+      "stereo config: field 'photometric': expected none, global or "
+      "local, got '" +
+      name + "'");
+}
+
 void StereoConfig::validate() const {
   if (num_disparities < 4 || num_disparities > 256)
     throw std::invalid_argument(fieldError("num_disparities", "4..256", num_disparities));
@@ -36,6 +59,11 @@ void StereoConfig::validate() const {
     throw std::invalid_argument(fieldError("min_texture", "a number >= 0", min_texture));
   if (!(uniqueness >= 0.0 && uniqueness < 1.0))
     throw std::invalid_argument(fieldError("uniqueness", "a number in [0, 1)", uniqueness));
+  if (prefilter_window < 3 || prefilter_window > 31 || prefilter_window % 2 == 0)
+    throw std::invalid_argument(
+        fieldError("prefilter_window", "an odd number in 3..31", prefilter_window));
+  if (prefilter_cap < 1 || prefilter_cap > 127)
+    throw std::invalid_argument(fieldError("prefilter_cap", "1..127", prefilter_cap));
   if (!use_horizontal && !use_vertical)
     throw std::invalid_argument(
         "stereo config: fields 'use_horizontal' and 'use_vertical': expected at least one "
@@ -184,10 +212,54 @@ StereoStats TrinocularMatcher::compute(const cv::Mat& reference, const cv::Mat& 
       throw std::invalid_argument("TrinocularMatcher: images must be CV_8UC1 " +
                                   std::to_string(width_) + "x" + std::to_string(height_));
   }
+  // The texture measure is taken on the raw reference (gradients ignore offsets anyway).
+  computeTexture(reference);
+  switch (config_.photometric) {
+    case StereoConfig::Photometric::kNone:
+      break;
+    case StereoConfig::Photometric::kGlobal:
+      matchGlobal(reference, horizontal, filtered_[1]);
+      matchGlobal(reference, vertical, filtered_[2]);
+      return match(reference, filtered_[1], filtered_[2], disparity);
+    case StereoConfig::Photometric::kLocalMean: {
+      const cv::Mat* raw[3] = {&reference, &horizontal, &vertical};
+      for (int i = 0; i < 3; ++i) prefilter(*raw[i], filtered_[i]);
+      return match(filtered_[0], filtered_[1], filtered_[2], disparity);
+    }
+  }
+  return match(reference, horizontal, vertical, disparity);
+}
+
+// out = (partner - mean) * spread_ref / spread + mean_ref, rounded and saturated.
+void TrinocularMatcher::matchGlobal(const cv::Mat& reference, const cv::Mat& partner,
+                                    cv::Mat& out) const {
+  cv::Scalar mean_ref, spread_ref, mean, spread;
+  cv::meanStdDev(reference, mean_ref, spread_ref);
+  cv::meanStdDev(partner, mean, spread);
+  const double gain = spread[0] > 1e-6 ? spread_ref[0] / spread[0] : 1.0;
+  partner.convertTo(out, CV_8U, gain, mean_ref[0] - gain * mean[0]);
+}
+
+// out = clamp(in - box mean of in, -cap, cap) + 128.
+void TrinocularMatcher::prefilter(const cv::Mat& in, cv::Mat& out) {
+  const int w = config_.prefilter_window, cap = config_.prefilter_cap;
+  cv::boxFilter(in, mean_, CV_32F, cv::Size(w, w), cv::Point(-1, -1), true, cv::BORDER_REPLICATE);
+  out.create(in.rows, in.cols, CV_8UC1);
+  const float lo = static_cast<float>(-cap), hi = static_cast<float>(cap);
+  for (int y = 0; y < in.rows; ++y) {
+    const uint8_t* a = in.ptr<uint8_t>(y);
+    const float* m = mean_.ptr<float>(y);
+    uint8_t* o = out.ptr<uint8_t>(y);
+    for (int x = 0; x < in.cols; ++x)
+      o[x] = static_cast<uint8_t>(std::lround(std::clamp(a[x] - m[x], lo, hi) + 128.0f));
+  }
+}
+
+StereoStats TrinocularMatcher::match(const cv::Mat& reference, const cv::Mat& horizontal,
+                                     const cv::Mat& vertical, cv::Mat& disparity) {
   const cv::Mat* partners[2] = {&horizontal, &vertical};
   for (int p = 0; p < 2; ++p)
     if (pairs_[p].enabled) preparePair(pairs_[p], *partners[p]);
-  computeTexture(reference);
   disparity.create(height_, width_, CV_32F);
   disparity.setTo(kInvalidDisparity);
 

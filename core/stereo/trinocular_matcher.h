@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include <opencv2/core/mat.hpp>
@@ -32,10 +33,26 @@ struct StereoConfig {
   // The centre pixel's own mean absolute difference to its partners at the winner may be
   // at most this (grey levels); catches windows that win across a depth edge. 0: off.
   int max_centre_difference = 12;
+  // Photometric normalisation before matching. Real cameras differ in gain and offset, and
+  // raw SAD does not forgive a few grey levels of offset on weak texture.
+  //  kGlobal: each partner's mean and spread are matched to the reference image's (exact for
+  //           a per-camera gain and offset; nothing changes at depth edges);
+  //  kLocalMean: every image minus its own mean over a prefilter_window square, clamped to
+  //           +-prefilter_cap (StereoBM's normalised response, unscaled): also absorbs
+  //           vignetting, at some cost at depth edges (Tsukuba: 2.9 -> 3.5 % bad pixels).
+  enum class Photometric { kNone, kGlobal, kLocalMean };
+  Photometric photometric = Photometric::kGlobal;
+  int prefilter_window = 9;  // odd px, kLocalMean only
+  int prefilter_cap = 63;    // grey levels, kLocalMean only
 
   // Throws std::invalid_argument naming the field and the bad value.
   void validate() const;
 };
+
+// "none", "global", "local" <-> the enum; parsing throws std::invalid_argument naming the
+// accepted names.
+const char* toString(StereoConfig::Photometric p);
+StereoConfig::Photometric parsePhotometric(const std::string& name);
 
 struct StereoStats {
   int valid = 0;
@@ -78,6 +95,10 @@ class TrinocularMatcher {
   void preparePair(Pair& pair, const cv::Mat& partner);
   sad::PairRow pairRow(Pair& pair, const cv::Mat& partner, int y);
   void computeTexture(const cv::Mat& reference);
+  void prefilter(const cv::Mat& in, cv::Mat& out);
+  void matchGlobal(const cv::Mat& reference, const cv::Mat& partner, cv::Mat& out) const;
+  StereoStats match(const cv::Mat& reference, const cv::Mat& horizontal, const cv::Mat& vertical,
+                    cv::Mat& disparity);
   // Whether reference pixel (x, y) (its row given) matches its partner pixels at integer
   // disparity d: mean absolute difference at most `max` (pairs not seeing it are skipped).
   bool centreMatches(const uint8_t* ref_row, const cv::Mat* const partners[2], int x, int y, int d,
@@ -108,6 +129,7 @@ class TrinocularMatcher {
   std::vector<sad::Choice> choices_;  // per pixel of the output row
   std::vector<uint8_t> skip_;         // per pixel of the output row: too little texture
   std::vector<uint16_t> texture_;     // window sums of |gradient| [y][x]
+  cv::Mat filtered_[3], mean_;        // prefiltered reference, horizontal, vertical
   std::vector<int32_t> tex_col_;      // running column sums for the texture measure
 };
 

@@ -3,6 +3,7 @@
 #include <btBulletDynamicsCommon.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 
@@ -19,7 +20,28 @@ struct Robot {
   bool slip_linear = false, slip_angular = false;  // traction saturated this step
   bool contact = false;
   int contact_events = 0;
+  // What the robot touched in the last step (static world, people, robots) and the counts.
+  std::array<bool, 3> touching_kind{};
+  ContactCounts counts;
 };
+
+namespace {
+// User indices tagging bodies, so contacts can be told apart (the default is -1: static).
+constexpr int kPersonTag = 1;
+constexpr int kRobotTag = 2;
+enum ContactKind { kStaticWorld = 0, kPerson = 1, kOtherRobot = 2 };
+
+ContactKind kindOf(const btCollisionObject* body) {
+  switch (body->getUserIndex()) {
+    case kPersonTag:
+      return kPerson;
+    case kRobotTag:
+      return kOtherRobot;
+    default:
+      return kStaticWorld;
+  }
+}
+}  // namespace
 
 struct PhysicsWorld::Impl {
   btDefaultCollisionConfiguration config;
@@ -87,6 +109,7 @@ int PhysicsWorld::addKinematicCylinder(double radius, double height,
       std::make_unique<btCylinderShapeZ>(btVector3(radius, radius, 0.5 * height)), pose, 0.3);
   body->setCollisionFlags(body->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
   body->setActivationState(DISABLE_DEACTIVATION);
+  body->setUserIndex(kPersonTag);
   im.kinematic.push_back(body);
   im.kinematic_z.push_back(0.5 * height + 0.001);
   return static_cast<int>(im.kinematic.size()) - 1;
@@ -143,6 +166,7 @@ int PhysicsWorld::addRobot(const RobotDescription& d, const Pose2& start,
   r->body = std::make_unique<btRigidBody>(info);
   r->body->setAngularFactor(btVector3(0, 0, 1));  // a synchro-drive base does not tip
   r->body->setActivationState(DISABLE_DEACTIVATION);
+  r->body->setUserIndex(kRobotTag);
   im.world.addRigidBody(r->body.get());
   im.robots.push_back(std::move(r));
   return static_cast<int>(im.robots.size()) - 1;
@@ -197,8 +221,8 @@ void PhysicsWorld::step() {
   im.world.stepSimulation(static_cast<btScalar>(step_), 0);
   time_ += step_;
 
-  // Contacts with anything but the floor.
-  std::vector<bool> touching(im.robots.size(), false);
+  // Contacts with anything but the floor, by the kind of what was touched.
+  std::vector<std::array<bool, 3>> touching(im.robots.size(), std::array<bool, 3>{});
   const int manifolds = im.dispatcher.getNumManifolds();
   for (int i = 0; i < manifolds; ++i) {
     const btPersistentManifold* mf = im.dispatcher.getManifoldByIndexInternal(i);
@@ -209,13 +233,22 @@ void PhysicsWorld::step() {
     for (int c = 0; c < mf->getNumContacts(); ++c)
       if (mf->getContactPoint(c).getDistance() < 0.002f) real = true;
     if (!real) continue;
-    for (size_t k = 0; k < im.robots.size(); ++k)
-      if (a == im.robots[k]->body.get() || b == im.robots[k]->body.get()) touching[k] = true;
+    for (size_t k = 0; k < im.robots.size(); ++k) {
+      const btCollisionObject* self = im.robots[k]->body.get();
+      if (a == self) touching[k][kindOf(b)] = true;
+      if (b == self) touching[k][kindOf(a)] = true;
+    }
   }
   for (size_t k = 0; k < im.robots.size(); ++k) {
     Robot& r = *im.robots[k];
-    if (touching[k] && !r.contact) ++r.contact_events;
-    r.contact = touching[k];
+    const bool any = touching[k][kStaticWorld] || touching[k][kPerson] || touching[k][kOtherRobot];
+    if (any && !r.contact) ++r.contact_events;
+    r.contact = any;
+    int* counts[3] = {&r.counts.static_world, &r.counts.people, &r.counts.robots};
+    for (int kind = 0; kind < 3; ++kind) {
+      if (touching[k][kind] && !r.touching_kind[kind]) ++*counts[kind];
+      r.touching_kind[kind] = touching[k][kind];
+    }
   }
 }
 
@@ -244,5 +277,8 @@ BodyVelocity PhysicsWorld::wheelVelocity(int robot) const {
 
 bool PhysicsWorld::inContact(int robot) const { return impl_->robots.at(robot)->contact; }
 int PhysicsWorld::contactEvents(int robot) const { return impl_->robots.at(robot)->contact_events; }
+ContactCounts PhysicsWorld::contactCounts(int robot) const {
+  return impl_->robots.at(robot)->counts;
+}
 
 }  // namespace coopmap::sim

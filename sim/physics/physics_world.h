@@ -26,6 +26,15 @@ struct DriveConfig {
   double velocity_time_constant = 0.05;  // s, how hard the base servo tracks the command
 };
 
+// Distinct contacts of a robot since start, by what it touched: a contact event of a kind
+// starts with a step in which the robot touches something of that kind after a step in which
+// it touched nothing of it (as RobotStatus::contact_events, which counts any kind).
+struct ContactCounts {
+  int static_world = 0;  // walls, furniture, doors, the home base
+  int people = 0;        // kinematic cylinders (people)
+  int robots = 0;        // other robots
+};
+
 class PhysicsWorld {
  public:
   // Builds the static world. `step` is the fixed physics step (s).
@@ -54,8 +63,9 @@ class PhysicsWorld {
   // What the wheels turn at (robot frame): the body's motion while they grip, the drive's
   // setpoint while they slip (traction saturated). Encoders measure this.
   BodyVelocity wheelVelocity(int robot) const;
-  bool inContact(int robot) const;     // touching a solid (not the floor) now
-  int contactEvents(int robot) const;  // new contacts since start
+  bool inContact(int robot) const;               // touching a solid (not the floor) now
+  int contactEvents(int robot) const;            // new contacts since start
+  ContactCounts contactCounts(int robot) const;  // the same, by what was touched
   double stepSize() const { return step_; }
   double time() const { return time_; }
   int robotCount() const;

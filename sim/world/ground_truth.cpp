@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace coopmap::sim {
 
@@ -66,18 +68,30 @@ GridU8 trueOccupancy(const World& world, const MapLimits& limits, double max_hei
   return truth;
 }
 
-GridU8 trueOccupancyAt(const World& world, const MapLimits& limits, double max_height, double t) {
+GridU8 trueOccupancyAt(const World& world, const MapLimits& limits, double max_height, double t,
+                       const std::vector<Eigen::Vector2d>& people) {
+  if (people.size() != world.people.size())
+    throw std::invalid_argument("trueOccupancyAt: " + std::to_string(people.size()) +
+                                " person positions for the world's " +
+                                std::to_string(world.people.size()) + " people");
   GridU8 truth = trueOccupancy(world, limits, max_height);
   rasterise(truth, world.doorsClosedAt(t), max_height);
-  for (const PersonSpec& p : world.people) {
-    const Eigen::Vector2d c = p.positionAt(t);
-    for (int iy = limits.cellY(c.y() - p.radius); iy <= limits.cellY(c.y() + p.radius); ++iy)
-      for (int ix = limits.cellX(c.x() - p.radius); ix <= limits.cellX(c.x() + p.radius); ++ix)
+  for (size_t k = 0; k < people.size(); ++k) {
+    const Eigen::Vector2d& c = people[k];
+    const double r = world.people[k].radius;
+    for (int iy = limits.cellY(c.y() - r); iy <= limits.cellY(c.y() + r); ++iy)
+      for (int ix = limits.cellX(c.x() - r); ix <= limits.cellX(c.x() + r); ++ix)
         if (limits.contains(ix, iy) &&
-            (limits.cellCenter(ix, iy) - c).norm() <= p.radius + 0.5 * limits.resolution)
+            (limits.cellCenter(ix, iy) - c).norm() <= r + 0.5 * limits.resolution)
           truth.at(ix, iy) = 1;
   }
   return truth;
+}
+
+GridU8 trueOccupancyAt(const World& world, const MapLimits& limits, double max_height, double t) {
+  std::vector<Eigen::Vector2d> people;
+  for (const PersonSpec& p : world.people) people.push_back(p.positionAt(t));
+  return trueOccupancyAt(world, limits, max_height, t, people);
 }
 
 }  // namespace coopmap::sim

@@ -1,6 +1,10 @@
 // Ground truth the simulator knows: the true occupancy of the world at map resolution.
 #pragma once
 
+#include <vector>
+
+#include <Eigen/Core>
+
 #include "core/mapping/grid.h"
 #include "sim/world/world.h"
 
@@ -14,7 +18,15 @@ MapLimits worldMapLimits(const World& world, double margin = 0.5);
 GridU8 trueOccupancy(const World& world, const MapLimits& limits, double max_height);
 
 // The true occupancy at time t (s): the static solids plus the doors closed at t and the
-// people where they stand at t.
+// people standing at `people` (m, world; one position per world.people, in order: a
+// simulation's Simulator::personPositions() at t). Throws std::invalid_argument if the
+// count differs.
+GridU8 trueOccupancyAt(const World& world, const MapLimits& limits, double max_height, double t,
+                       const std::vector<Eigen::Vector2d>& people);
+
+// As above with the people where their schedule puts them at t if no robot ever made them
+// wait (PersonSpec::positionAt). In a simulation with robots near people, use the overload
+// above with the simulator's positions.
 GridU8 trueOccupancyAt(const World& world, const MapLimits& limits, double max_height, double t);
 
 // 1 for cells whose centre lies on the floor (where a robot can be at all).

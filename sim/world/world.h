@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <map>
+#include <numbers>
 #include <string>
 #include <utility>
 #include <vector>
@@ -72,6 +73,9 @@ struct HomeBaseSpec {
 };
 
 // A person walking a path at a steady speed (a kinematic body: it pushes, it is not pushed).
+// A person waits for robots: they pause while a robot stands ahead of them and near (see
+// yieldsTo), so where they are depends on their "walked time", the seconds they have spent
+// walking since start_time; the simulator keeps it.
 struct PersonSpec {
   std::string name;
   double radius = 0.25;               // m
@@ -79,10 +83,28 @@ struct PersonSpec {
   double speed = 1.2;                 // m/s
   double start_time = 0;              // s: stands at the path's start until then
   bool loop = false;                  // walk the path again and again; else stop at its end
+  double yield_distance = 1.0;        // m of free space kept to a robot ahead; 0: never waits
   std::vector<Eigen::Vector2d> path;  // at least two points
 
-  // Where the person stands at time t (s).
+  // Half-angle of "ahead" (rad): a robot within 75 degrees of the walking direction.
+  static constexpr double kYieldHalfAngle = 75.0 * std::numbers::pi / 180.0;
+
+  // A place on the path: where the person stands and the unit direction they walk in
+  // there (the current segment's; zero where walking on would not move them: at the end
+  // of a path that does not loop, or at speed 0). World frame, m.
+  struct Place {
+    Eigen::Vector2d position{0.0, 0.0};
+    Eigen::Vector2d direction{0.0, 0.0};
+  };
+  // Where the person is after walking for `walked` seconds (pauses not counted).
+  Place placeAtWalked(double walked) const;
+  Eigen::Vector2d positionAtWalked(double walked) const { return placeAtWalked(walked).position; }
+  // Where the person stands at time t (s) if nothing ever made them wait.
   Eigen::Vector2d positionAt(double t) const;
+  // True if a robot (centre `robot`, m, world; radius `robot_radius`, m) makes the person
+  // wait at walked time `walked`: its centre is within yield_distance + radius +
+  // robot_radius of the person's and within kYieldHalfAngle of the walking direction.
+  bool yieldsTo(double walked, const Eigen::Vector2d& robot, double robot_radius) const;
 };
 
 // A floor patch whose wheel-floor friction replaces the robot's own (tile, a wet or dusty

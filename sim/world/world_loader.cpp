@@ -124,25 +124,46 @@ std::vector<SolidBox> World::solids() const {
   return out;
 }
 
-Eigen::Vector2d PersonSpec::positionAt(double t) const {
-  if (path.size() < 2) return path.empty() ? Eigen::Vector2d::Zero() : path.front();
+PersonSpec::Place PersonSpec::placeAtWalked(double walked) const {
+  if (path.size() < 2) return {path.empty() ? Eigen::Vector2d::Zero() : path.front(), {0.0, 0.0}};
   double length = 0.0;
   for (size_t i = 1; i < path.size(); ++i) length += (path[i] - path[i - 1]).norm();
-  double s = std::max(0.0, t - start_time) * speed;
+  double s = std::max(0.0, walked) * speed;
   if (loop) {
-    s = std::fmod(s, length + (path.back() - path.front()).norm());
+    const double lap = length + (path.back() - path.front()).norm();
+    s = lap > 0.0 ? std::fmod(s, lap) : 0.0;
   } else if (s >= length) {
-    return path.back();
+    return {path.back(), {0.0, 0.0}};
   }
   // Along the path, closing it back to the start when looping.
-  for (size_t i = 1; i <= path.size(); ++i) {
-    const Eigen::Vector2d& a = path[i - 1];
-    const Eigen::Vector2d& b = i < path.size() ? path[i] : path.front();
+  const size_t segments = loop ? path.size() : path.size() - 1;
+  for (size_t i = 0; i < segments; ++i) {
+    const Eigen::Vector2d& a = path[i];
+    const Eigen::Vector2d& b = path[(i + 1) % path.size()];
     const double seg = (b - a).norm();
-    if (s <= seg || i == path.size()) return seg > 0 ? a + (b - a) * std::min(1.0, s / seg) : a;
+    if (seg > 0.0 && (s < seg || i + 1 == segments)) {
+      const Eigen::Vector2d direction =
+          speed > 0.0 ? Eigen::Vector2d((b - a) / seg) : Eigen::Vector2d::Zero();
+      return {a + (b - a) * std::min(1.0, s / seg), direction};
+    }
     s -= seg;
   }
-  return path.back();
+  return {path.back(), {0.0, 0.0}};
+}
+
+Eigen::Vector2d PersonSpec::positionAt(double t) const {
+  return positionAtWalked(std::max(0.0, t - start_time));
+}
+
+bool PersonSpec::yieldsTo(double walked, const Eigen::Vector2d& robot, double robot_radius) const {
+  if (!(yield_distance > 0.0)) return false;
+  const Place here = placeAtWalked(walked);
+  if (here.direction.isZero()) return false;  // not walking: nothing to wait for
+  const Eigen::Vector2d d = robot - here.position;
+  const double reach = yield_distance + radius + robot_radius;
+  const double dist = d.norm();
+  if (dist > reach) return false;
+  return dist == 0.0 || d.dot(here.direction) >= dist * std::cos(kYieldHalfAngle);
 }
 
 Eigen::Matrix3d TargetSpec::rotation() const {
@@ -284,7 +305,8 @@ World parseWorld(const std::string& text, const std::string& file) {
   }
   if (const auto people = root.get("people")) {
     for (const YamlField& f : people->elements()) {
-      f.allowOnly({"name", "radius", "height", "speed", "start_time", "loop", "path"});
+      f.allowOnly(
+          {"name", "radius", "height", "speed", "start_time", "loop", "yield_distance", "path"});
       PersonSpec p;
       p.name = f["name"].asString();
       p.radius = optionalDouble(f, "radius", p.radius, 0.1, 1.0, "a radius in [0.1, 1] m");
@@ -292,6 +314,8 @@ World parseWorld(const std::string& text, const std::string& file) {
       p.speed = optionalDouble(f, "speed", p.speed, 0.0, 3.0, "a walking speed in [0, 3] m/s");
       p.start_time = optionalDouble(f, "start_time", 0.0, 0.0, 1e6, "a time >= 0 s");
       if (f.has("loop")) p.loop = f["loop"].asBool();
+      p.yield_distance = optionalDouble(f, "yield_distance", p.yield_distance, 0.0, 100.0,
+                                        "a distance in [0, 100] m (0: never waits for robots)");
       const auto points = f["path"].elements();
       if (points.size() < 2) f["path"].fail("a list of at least 2 points");
       for (const YamlField& pt : points) {

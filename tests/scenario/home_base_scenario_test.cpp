@@ -35,7 +35,7 @@ TEST(HomeBaseScenarioTest, DriftingTourIsCorrectedAtHome) {
   const sim::World world = sim::loadWorld(kLab);
   const auto& hb = world.home_base;
   int localized = 0;
-  for (uint64_t seed : {1, 2, 3}) {
+  for (uint64_t seed = 1; seed <= 10; ++seed) {
     RunOptions o;
     o.world_file = kLab;
     o.seed = seed;
@@ -67,11 +67,12 @@ TEST(HomeBaseScenarioTest, DriftingTourIsCorrectedAtHome) {
     const double before_m = std::hypot(odometry.x - truth.x, odometry.y - truth.y);
     const double before_deg = std::abs(wrapAngle(odometry.theta - truth.theta)) * 180 / M_PI;
     const double after_m = std::hypot(fix.x - truth.x, fix.y - truth.y);
-    const double after_deg = std::abs(wrapAngle(fix.theta - truth.theta)) * 180 / M_PI;
+    const double signed_deg = wrapAngle(fix.theta - truth.theta) * 180 / M_PI;
+    const double after_deg = std::abs(signed_deg);
     std::printf(
-        "seed %llu: odometry error %.3f m %.2f deg -> home-base fix %.4f m %.3f deg "
+        "seed %llu: odometry error %.3f m %.2f deg -> home-base fix %.4f m %+.3f deg "
         "(%s, %d scans, %d of %d points within %.2f cells)\n",
-        static_cast<unsigned long long>(seed), before_m, before_deg, after_m, after_deg,
+        static_cast<unsigned long long>(seed), before_m, before_deg, after_m, signed_deg,
         protocol.method.c_str(), ret.scans, ret.alignment.inliers, ret.alignment.points,
         ret.alignment.rms_cells);
     EXPECT_GT(before_m, 0.1) << "seed " << seed << ": the tour should have drifted";

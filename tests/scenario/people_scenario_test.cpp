@@ -64,7 +64,7 @@ TEST(PeopleScenarioTest, PersonCrossingShowsThenLeavesNoObstacle) {
 TEST(PeopleScenarioTest, PersonWalkingIntoTheRobotIsAContact) {
   RunOptions o;
   o.world_file = writeWorld(R"(people:
-  - {name: bob, radius: 0.25, speed: 0.8, path: [[3.0, 0.0], [-0.5, 0.0]]}
+  - {name: bob, radius: 0.25, speed: 0.8, yield_distance: 0, path: [[3.0, 0.0], [-0.5, 0.0]]}
 )");
   o.robots = 1;
   o.duration = 6.0;

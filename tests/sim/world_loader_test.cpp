@@ -150,6 +150,27 @@ TEST(WorldLoaderTest, PeopleWalkTheirPaths) {
   EXPECT_EQ(p.positionAt(60.0), Eigen::Vector2d(4, 3));  // stays at the end
 }
 
+TEST(WorldLoaderTest, PersonYieldDistanceIsRead) {
+  const World w = parseWorld(minimal() +
+                                 "people:\n"
+                                 "  - {name: ann, path: [[1, 1], [4, 1]]}\n"
+                                 "  - {name: bob, yield_distance: 0, path: [[1, 1], [4, 1]]}\n"
+                                 "  - {name: cid, yield_distance: 2.5, path: [[1, 1], [4, 1]]}\n",
+                             "w.yaml");
+  ASSERT_EQ(w.people.size(), 3u);
+  EXPECT_EQ(w.people[0].yield_distance, 1.0);  // the default
+  EXPECT_EQ(w.people[1].yield_distance, 0.0);  // never waits
+  EXPECT_EQ(w.people[2].yield_distance, 2.5);
+}
+
+TEST(WorldLoaderTest, PersonYieldDistanceMustNotBeNegative) {
+  const std::string e = errorOf(
+      minimal() + "people:\n  - {name: ann, yield_distance: -0.5, path: [[1, 1], [4, 1]]}\n");
+  EXPECT_EQ(e,
+            "w.yaml:18:33: people[0].yield_distance: expected a distance in [0, 100] m (0: never "
+            "waits for robots), got '-0.5'");
+}
+
 TEST(WorldLoaderTest, PersonPathNeedsTwoPoints) {
   const std::string e = errorOf(minimal() + "people:\n  - {name: ann, path: [[1, 1]]}\n");
   EXPECT_EQ(e, "w.yaml:18:23: people[0].path: expected a list of at least 2 points, got a list");

@@ -1,0 +1,202 @@
+#include "core/agent/cooperation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <utility>
+
+namespace coopmap {
+
+void CooperationConfig::validate() const {
+  if (!(max_fix_jump_m > 0.0))
+    throw std::invalid_argument(
+        "cooperation config: field 'max_fix_jump_m': expected a positive number, got " +
+        std::to_string(max_fix_jump_m));
+  if (!(max_disagreement_m > 0.0))
+    throw std::invalid_argument(
+        "cooperation config: field 'max_disagreement_m': expected a positive number, got " +
+        std::to_string(max_disagreement_m));
+  if (!(max_fix_jump_rad > 0.0))
+    throw std::invalid_argument(
+        "cooperation config: field 'max_fix_jump_rad': expected a positive number, got " +
+        std::to_string(max_fix_jump_rad));
+  home_return.validate();
+  closure_alignment.validate();
+  if (closure_scans < 1 || closure_stride < 1)
+    throw std::invalid_argument(
+        "cooperation config: fields 'closure_scans' and 'closure_stride': expected at least 1, "
+        "got " +
+        std::to_string(closure_scans) + " and " + std::to_string(closure_stride));
+  if (!(closure_min_inliers >= 0.0 && closure_min_inliers <= 1.0))
+    throw std::invalid_argument(
+        "cooperation config: field 'closure_min_inliers': expected a share in [0, 1], got " +
+        std::to_string(closure_min_inliers));
+  if (!(closure_max_m > 0.0 && closure_max_rad > 0.0 && closure_sigma_xy > 0.0 &&
+        closure_sigma_theta > 0.0))
+    throw std::invalid_argument(
+        "cooperation config: fields 'closure_max_m', 'closure_max_rad', 'closure_sigma_xy', "
+        "'closure_sigma_theta': expected positive numbers");
+}
+
+HomeBaseCooperation::HomeBaseCooperation(std::string robot, const HomeBase& nominal,
+                                         double arm_length, SharedMapService* shared,
+                                         const CooperationConfig& config)
+    : robot_(std::move(robot)),
+      nominal_(nominal),
+      home_(nominal),
+      arm_length_(arm_length),
+      shared_(shared),
+      config_(config) {
+  config_.validate();
+  if (!shared_) throw std::invalid_argument("HomeBaseCooperation: no shared map service");
+}
+
+HomeBaseCooperation::Located HomeBaseCooperation::locateSortie(const TraverseLog& sortie) const {
+  Located l;
+  SortieReport& rep = l.rep;
+  rep.sortie = static_cast<int>(reports_.size()) + 1;
+  rep.entries = sortie.entries.size();
+  if (sortie.entries.empty()) {
+    rep.method = "no radial maps in the sortie";
+    return l;
+  }
+  rep.stamp = sortie.entries.back().scan.stamp;
+
+  // The first sortie starts with the look at the home base: it registers the home base
+  // and keeps its first scans as the reference. Later sorties are localized against that
+  // reference: its scans go in front of the sortie's, so the log looks like the first one
+  // did (a start at the home base, a turn at the end).
+  // After a sortie the robot is off by what one sortie drifts at most.
+  HomeReturnConfig bounded = config_.home_return;
+  bounded.max_correction_rad = std::min(bounded.max_correction_rad, config_.max_fix_jump_rad);
+  bounded.max_correction_m = std::min(bounded.max_correction_m, config_.max_fix_jump_m);
+  HomeReturn ret;
+  size_t offset = 0;
+  if (!reference_) {
+    l.protocol = runHomeBaseProtocol(sortie, nominal_, arm_length_, bounded);
+    ret = l.protocol->result;
+    rep.method = l.protocol->method;
+  } else {
+    TraverseLog joined = reference_log_;
+    offset = joined.entries.size();
+    joined.entries.insert(joined.entries.end(), sortie.entries.begin(), sortie.entries.end());
+    ret = localizeFromLog(joined, home_, arm_length_, bounded, &*reference_);
+    rep.method = ret.refined ? "alignment to the reference" : "corners";
+    if (ret.status == HomeReturnStatus::kOk && ret.observation.entry < offset) {
+      rep.method = "the fix fell on a reference scan, not on the return turn";
+      return l;
+    }
+  }
+  if (ret.status != HomeReturnStatus::kOk) {
+    rep.method = std::string(toString(ret.status)) +
+                 (ret.alignment.message.empty() ? "" : " (" + ret.alignment.message + ")");
+    return l;
+  }
+  l.observation = ret.observation;
+  l.observation.entry -= offset;
+  const Pose2& estimate = sortie.entries[l.observation.entry].scan.odometry;
+  rep.fix = l.observation.pose;
+  rep.fix_stamp = sortie.entries[l.observation.entry].scan.stamp;
+  rep.correction = l.observation.pose * estimate.inverse();
+  if (rep.correction.translation().norm() > config_.max_fix_jump_m ||
+      std::abs(rep.correction.theta) > config_.max_fix_jump_rad) {
+    rep.method = "fix not trusted: it moves the robot " +
+                 std::to_string(rep.correction.translation().norm()) + " m and " +
+                 std::to_string(rep.correction.theta * 180.0 / M_PI) + " deg";
+    return l;
+  }
+  rep.fixed = true;
+  return l;
+}
+
+SortieReport HomeBaseCooperation::locate(const TraverseLog& sortie) const {
+  return locateSortie(sortie).rep;
+}
+
+SortieReport HomeBaseCooperation::endSortie(const TraverseLog& sortie,
+                                            const std::optional<Eigen::Vector2d>& expected) {
+  Located l = locateSortie(sortie);
+  SortieReport& rep = l.rep;
+  if (rep.fixed && expected &&
+      (rep.fix.translation() - *expected).norm() > config_.max_disagreement_m) {
+    rep.fixed = false;
+    rep.method +=
+        "; fix not trusted: " + std::to_string((rep.fix.translation() - *expected).norm()) +
+        " m from where the first fix sent the robot";
+  }
+  auto done = [&]() {
+    rep.map_version = shared_->snapshot().version;
+    reports_.push_back(rep);
+    return rep;
+  };
+  if (l.protocol) {  // the first sortie registered the home base
+    home_ = l.protocol->home;
+    reference_ = l.protocol->reference;
+    reference_log_.robot = sortie.robot;
+    for (size_t i : referenceEntries(sortie, config_.home_return))
+      reference_log_.entries.push_back(sortie.entries[i]);
+  }
+  if (!rep.fixed) return done();
+  const PoseObservation& observation = l.observation;
+
+  // Correct the sortie's traverse and share it.
+  CorrectionResult c = correctTraverse(sortie, observation, config_.correction);
+  if (!c.ok) {
+    rep.fixed = false;
+    rep.method += "; correction failed: " + c.message;
+    return done();
+  }
+  if (config_.closures) {
+    const std::vector<PoseObservation> closures = closuresAgainstSharedMap(sortie, c.poses);
+    if (!closures.empty()) {
+      CorrectionConfig graph = config_.correction;
+      graph.model = CorrectionModel::kPoseGraph;
+      CorrectionResult g = correctTraverse(sortie, observation, graph, closures);
+      if (g.ok) {
+        c = std::move(g);
+        rep.closures = static_cast<int>(closures.size());
+        rep.method += " + " + std::to_string(closures.size()) + " closures to the shared map";
+      }
+    }
+  }
+  rep.post = shared_->post(correctedPost(sortie, c.poses, next_post_++));
+  rep.posted = rep.post.status == PostStatus::kAccepted;
+  if (rep.posted)
+    for (size_t i = 0; i < c.poses.size(); ++i)
+      corrected_.push_back({sortie.entries[i].scan.stamp, c.poses[i]});
+  return done();
+}
+
+std::vector<PoseObservation> HomeBaseCooperation::closuresAgainstSharedMap(
+    const TraverseLog& sortie, const std::vector<Pose2>& corrected) const {
+  std::vector<PoseObservation> out;
+  const SharedMapSnapshot snap = shared_->snapshot();
+  if (snap.version == 0) return out;
+  OccupancyGrid map(shared_->limits(), shared_->config());
+  map.assign(snap.log_odds, snap.seen);
+  const ScanAligner aligner(map, config_.closure_alignment);
+  const size_t n = sortie.entries.size(), k = static_cast<size_t>(config_.closure_scans);
+  for (size_t begin = 0; begin + k <= n; begin += static_cast<size_t>(config_.closure_stride)) {
+    std::vector<RadialMap> scans;
+    for (size_t i = begin; i < begin + k; ++i) {
+      scans.push_back(sortie.entries[i].scan);
+      scans.back().odometry = corrected[i];
+    }
+    std::vector<const RadialMap*> ptrs;
+    for (const RadialMap& m : scans) ptrs.push_back(&m);
+    const AlignmentResult a = aligner.align(ptrs, Pose2());
+    if (!a.ok || a.inliers < config_.closure_min_inliers * a.points) continue;
+    if (a.correction.translation().norm() > config_.closure_max_m ||
+        std::abs(a.correction.theta) > config_.closure_max_rad)
+      continue;
+    PoseObservation o;
+    o.entry = begin + k / 2;
+    o.pose = a.correction * corrected[o.entry];
+    o.sigma_xy = config_.closure_sigma_xy;
+    o.sigma_theta = config_.closure_sigma_theta;
+    out.push_back(o);
+  }
+  return out;
+}
+
+}  // namespace coopmap

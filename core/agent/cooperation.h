@@ -1,0 +1,110 @@
+// One robot's side of the paper's cooperation (section 4): at the end of every sortie the
+// robot is back at the home base and has looked at it; it localizes there, corrects the
+// sortie's traverse, posts the corrected radial maps to the shared map, and imports the
+// shared map before it goes again. Uncorrected data is never shared. Robot-agnostic: it
+// works on traverse logs, the same from the simulator, a recording or a real robot.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/correction/drift_correction.h"
+#include "core/correction/home_return.h"
+#include "core/correction/traverse_log.h"
+#include "core/io/tum.h"
+#include "core/localization/scan_alignment.h"
+#include "core/sharing/shared_map.h"
+
+namespace coopmap {
+
+struct CooperationConfig {
+  HomeReturnConfig home_return;
+  CorrectionConfig correction;  // heading-drift by default
+  // A fix that moves the robot farther than this (m) or turns it more than this (rad) from
+  // where it believed it was is not trusted (the home base was mistaken for something else).
+  double max_fix_jump_m = 3.0;
+  double max_fix_jump_rad = 0.6;
+  double max_disagreement_m = 0.3;
+  // Beyond the paper: once the shared map has data, stretches of the corrected sortie
+  // (closure_scans radial maps every closure_stride entries) are aligned to it, and those
+  // that fit (inlier share >= closure_min_inliers, within closure_max_m / closure_max_rad of
+  // where the home-base correction put them) become loop closures of a pose-graph
+  // correction: the sortie is made to agree with what is already shared.
+  bool closures = true;
+  int closure_scans = 6;
+  int closure_stride = 9;
+  double closure_min_inliers = 0.7;
+  double closure_max_m = 0.5;
+  double closure_max_rad = 0.1;
+  double closure_sigma_xy = 0.05;     // m, 1-sigma of a closure
+  double closure_sigma_theta = 0.02;  // rad
+  AlignmentConfig closure_alignment;
+  void validate() const;  // throws std::invalid_argument naming the field
+};
+
+struct SortieReport {
+  int sortie = 0;            // 1 for the first
+  double stamp = 0.0;        // s: the last entry of the sortie
+  size_t entries = 0;        // radial maps in the sortie
+  bool fixed = false;        // localized at the home base
+  std::string method;        // how it was localized, or why not
+  Pose2 correction;          // X_M,estimate: what the fix did to the robot's estimate
+  Pose2 fix;                 // the robot's pose in the map frame at the fix
+  double fix_stamp = 0.0;    // s: when (the radial map the fix is for)
+  bool posted = false;       // the corrected traverse was accepted by the shared map
+  PostResult post;           // what the shared map said
+  int closures = 0;          // stretches aligned to the shared map (pose-graph closures)
+  uint64_t map_version = 0;  // of the shared map imported afterwards
+};
+
+class HomeBaseCooperation {
+ public:
+  // `nominal`: the home base as designed (map frame); `shared`: the shared-map service
+  // (not owned; must outlive this).
+  HomeBaseCooperation(std::string robot, const HomeBase& nominal, double arm_length,
+                      SharedMapService* shared, const CooperationConfig& config = {});
+
+  // The sortie's traverse: its entries in the robot's map-frame estimate, ending with the
+  // turn at the home base (the first sortie starts with the look at the home base, which
+  // registers it). Localizes, corrects, posts; returns what happened. Afterwards the robot
+  // applies `correction` to its estimate and imports the shared map (SharedMapService::
+  // snapshot), whether or not its post went in.
+  // With `expected`: where the robot should be at the fix (it drove to its start by a
+  // first fix); a fix farther than max_disagreement_m from it is not trusted.
+  SortieReport endSortie(const TraverseLog& sortie,
+                         const std::optional<Eigen::Vector2d>& expected = std::nullopt);
+  // Localizes only (nothing posted, nothing registered): where is the robot now? For a
+  // robot that came back away from its start: it drives to the start by this fix and
+  // looks again, so that endSortie sees the home base as the reference scans did.
+  SortieReport locate(const TraverseLog& sortie) const;
+
+  const std::vector<SortieReport>& reports() const { return reports_; }
+  // Every entry of the sorties posted so far at its corrected pose (map frame), in order.
+  const std::vector<StampedPose2>& corrected() const { return corrected_; }
+  // The registered home base (after the first sortie): the robot's own, or the nominal one.
+  const HomeBase& home() const { return home_; }
+
+ private:
+  std::string robot_;
+  HomeBase nominal_, home_;
+  double arm_length_;
+  SharedMapService* shared_;
+  CooperationConfig config_;
+  TraverseLog reference_log_;  // the first sortie's look at the home base (exact poses)
+  std::optional<OccupancyGrid> reference_;
+  std::vector<SortieReport> reports_;
+  std::vector<StampedPose2> corrected_;
+  struct Located {
+    SortieReport rep;
+    PoseObservation observation;               // in the sortie's entries, when rep.fixed
+    std::optional<HomeBaseProtocol> protocol;  // the first sortie's registration
+  };
+  Located locateSortie(const TraverseLog& sortie) const;
+  // Closures of a corrected sortie against the shared map as it is now.
+  std::vector<PoseObservation> closuresAgainstSharedMap(const TraverseLog& sortie,
+                                                        const std::vector<Pose2>& corrected) const;
+  uint64_t next_post_ = 1;
+};
+
+}  // namespace coopmap
