@@ -400,10 +400,11 @@ void endSortie(RobotRun& r, LocalSharedMap& live, double now, double reapproach_
     for (auto it = r.result.groundtruth.rbegin(); it != r.result.groundtruth.rend(); ++it)
       if (it->stamp <= rep.fix_stamp + 1e-9) {
         const Pose2& t = it->pose;
+        const double m = std::hypot(rep.fix.x - t.x, rep.fix.y - t.y);
+        const double deg = std::abs(wrapAngle(rep.fix.theta - t.theta)) * 180.0 / M_PI;
+        r.result.fix_errors.emplace_back(m, deg);
         char e[96];
-        std::snprintf(e, sizeof e, " (%.1f cm, %.2f deg off the truth)",
-                      100.0 * std::hypot(rep.fix.x - t.x, rep.fix.y - t.y),
-                      std::abs(wrapAngle(rep.fix.theta - t.theta)) * 180.0 / M_PI);
+        std::snprintf(e, sizeof e, " (%.1f cm, %.2f deg off the truth)", 100.0 * m, deg);
         error = e;
         break;
       }
@@ -412,7 +413,11 @@ void endSortie(RobotRun& r, LocalSharedMap& live, double now, double reapproach_
                 rep.entries, rep.fixed ? "fixed" : "no fix", error.c_str(),
                 rep.posted ? ", posted" : "");
   r.result.sortie_log.push_back(std::string(line) + " (" + rep.method + ")");
-  r.mission->continueAfterFix(now);
+  if (rep.fixed)
+    r.mission->continueAfterFix(now);
+  else
+    r.mission->finish("stopped: no trusted home-base fix after sortie " +
+                      std::to_string(rep.sortie) + ", the robot does not know where it is");
 }
 
 void drawProgress(double t, double total) {
@@ -485,6 +490,7 @@ RunResult runWorld(const RunOptions& opt) {
       mission.planning = PlanningMapConfig::forRobot(model.description);
       mission.planner.seed = static_cast<uint32_t>(opt.seed + i);
       mission.budget_m = opt.sortie_budget_m;
+      mission.budget_s = opt.sortie_budget_s;
       mission.max_sorties = cooperative ? opt.max_sorties : 1;
       r.mission = std::make_unique<MissionAgent>(spec.start, mission);
       if (cooperative) {

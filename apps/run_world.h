@@ -7,6 +7,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/correction/traverse_log.h"
@@ -40,6 +41,7 @@ struct RunOptions {
   // it (core/agent/cooperation.h), then goes again, at most max_sorties times. With
   // max_sorties 1 it explores once and the maps are shared after the run (share_maps).
   double sortie_budget_m = 25.0;
+  double sortie_budget_s = 400.0;  // s: a robot stuck (wheels slipping) goes home too
   int max_sorties = 12;
   // A robot whose first fix at the end of a sortie puts it farther than this (m) from its
   // start drives there by that fix and looks again before the sortie is corrected.
@@ -79,6 +81,8 @@ struct RobotRunResult {
   int sorties_fixed = 0;                // of them, localized there
   int sorties_posted = 0;               // of them, posted to the shared map
   std::vector<std::string> sortie_log;  // one line per sortie, for people
+  // Each home-base fix of the sorties against the true pose (m, deg).
+  std::vector<std::pair<double, double>> fix_errors;
   std::vector<StampedPose2> estimate;   // the robot's own pose estimate (map frame)
   std::vector<StampedPose2> corrected;  // entries posted, at their corrected poses
 };

@@ -12,6 +12,10 @@ void CooperationConfig::validate() const {
     throw std::invalid_argument(
         "cooperation config: field 'max_fix_jump_m': expected a positive number, got " +
         std::to_string(max_fix_jump_m));
+  if (!(min_home_agreement >= 0.0 && min_home_agreement <= 1.0) || home_check_scans < 1)
+    throw std::invalid_argument(
+        "cooperation config: fields 'min_home_agreement' and 'home_check_scans': expected a "
+        "share in [0, 1] and at least 1 scan");
   if (!(max_disagreement_m > 0.0))
     throw std::invalid_argument(
         "cooperation config: field 'max_disagreement_m': expected a positive number, got " +
@@ -146,8 +150,18 @@ SortieReport HomeBaseCooperation::endSortie(const TraverseLog& sortie,
     rep.method += "; correction failed: " + c.message;
     return done();
   }
-  if (config_.closures) {
-    const std::vector<PoseObservation> closures = closuresAgainstSharedMap(sortie, c.poses);
+  // The shared map as it is now, prepared for alignment (once).
+  const SharedMapSnapshot snap = shared_->snapshot();
+  std::optional<OccupancyGrid> map;
+  std::optional<ScanAligner> aligner;
+  if (snap.version > 0) {
+    map.emplace(shared_->limits(), shared_->config());
+    map->assign(snap.log_odds, snap.seen);
+    aligner.emplace(*map, config_.closure_alignment);
+  }
+  if (config_.closures && aligner) {
+    const std::vector<PoseObservation> closures =
+        closuresAgainstSharedMap(sortie, c.poses, *aligner);
     if (!closures.empty()) {
       CorrectionConfig graph = config_.correction;
       graph.model = CorrectionModel::kPoseGraph;
@@ -156,6 +170,27 @@ SortieReport HomeBaseCooperation::endSortie(const TraverseLog& sortie,
         c = std::move(g);
         rep.closures = static_cast<int>(closures.size());
         rep.method += " + " + std::to_string(closures.size()) + " closures to the shared map";
+      }
+    }
+  }
+  if (aligner) {
+    std::vector<RadialMap> look;
+    const size_t n = sortie.entries.size();
+    const size_t k = std::min(n, static_cast<size_t>(config_.home_check_scans));
+    for (size_t i = n - k; i < n; ++i) {
+      look.push_back(sortie.entries[i].scan);
+      look.back().odometry = c.poses[i];
+    }
+    std::vector<const RadialMap*> ptrs;
+    for (const RadialMap& m : look) ptrs.push_back(&m);
+    const std::vector<Eigen::Vector2d> points = aligner->obstaclePoints(ptrs);
+    if (points.size() >= 50) {
+      rep.home_agreement = aligner->score(points, Pose2());
+      if (rep.home_agreement < config_.min_home_agreement) {
+        rep.fixed = false;
+        rep.method += "; not shared: at the fix, home does not look like the shared map's (" +
+                      std::to_string(rep.home_agreement) + " of the points on its obstacles)";
+        return done();
       }
     }
   }
@@ -168,13 +203,9 @@ SortieReport HomeBaseCooperation::endSortie(const TraverseLog& sortie,
 }
 
 std::vector<PoseObservation> HomeBaseCooperation::closuresAgainstSharedMap(
-    const TraverseLog& sortie, const std::vector<Pose2>& corrected) const {
+    const TraverseLog& sortie, const std::vector<Pose2>& corrected,
+    const ScanAligner& aligner) const {
   std::vector<PoseObservation> out;
-  const SharedMapSnapshot snap = shared_->snapshot();
-  if (snap.version == 0) return out;
-  OccupancyGrid map(shared_->limits(), shared_->config());
-  map.assign(snap.log_odds, snap.seen);
-  const ScanAligner aligner(map, config_.closure_alignment);
   const size_t n = sortie.entries.size(), k = static_cast<size_t>(config_.closure_scans);
   for (size_t begin = 0; begin + k <= n; begin += static_cast<size_t>(config_.closure_stride)) {
     std::vector<RadialMap> scans;

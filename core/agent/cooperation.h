@@ -40,22 +40,29 @@ struct CooperationConfig {
   double closure_sigma_xy = 0.05;     // m, 1-sigma of a closure
   double closure_sigma_theta = 0.02;  // rad
   AlignmentConfig closure_alignment;
+  // Before posting: the last home_check_scans radial maps (the look at home) at their
+  // corrected poses must put at least this share of their obstacle points on the shared
+  // map's obstacles (when it has data there): a wrong fix shows as a home that does not look
+  // like the shared map's home, and is not shared.
+  double min_home_agreement = 0.5;
+  int home_check_scans = 30;
   void validate() const;  // throws std::invalid_argument naming the field
 };
 
 struct SortieReport {
-  int sortie = 0;            // 1 for the first
-  double stamp = 0.0;        // s: the last entry of the sortie
-  size_t entries = 0;        // radial maps in the sortie
-  bool fixed = false;        // localized at the home base
-  std::string method;        // how it was localized, or why not
-  Pose2 correction;          // X_M,estimate: what the fix did to the robot's estimate
-  Pose2 fix;                 // the robot's pose in the map frame at the fix
-  double fix_stamp = 0.0;    // s: when (the radial map the fix is for)
-  bool posted = false;       // the corrected traverse was accepted by the shared map
-  PostResult post;           // what the shared map said
-  int closures = 0;          // stretches aligned to the shared map (pose-graph closures)
-  uint64_t map_version = 0;  // of the shared map imported afterwards
+  int sortie = 0;                // 1 for the first
+  double stamp = 0.0;            // s: the last entry of the sortie
+  size_t entries = 0;            // radial maps in the sortie
+  bool fixed = false;            // localized at the home base
+  std::string method;            // how it was localized, or why not
+  Pose2 correction;              // X_M,estimate: what the fix did to the robot's estimate
+  Pose2 fix;                     // the robot's pose in the map frame at the fix
+  double fix_stamp = 0.0;        // s: when (the radial map the fix is for)
+  bool posted = false;           // the corrected traverse was accepted by the shared map
+  PostResult post;               // what the shared map said
+  int closures = 0;              // stretches aligned to the shared map (pose-graph closures)
+  double home_agreement = -1.0;  // share of the look's points on the shared map (-1: none)
+  uint64_t map_version = 0;      // of the shared map imported afterwards
 };
 
 class HomeBaseCooperation {
@@ -103,7 +110,8 @@ class HomeBaseCooperation {
   Located locateSortie(const TraverseLog& sortie) const;
   // Closures of a corrected sortie against the shared map as it is now.
   std::vector<PoseObservation> closuresAgainstSharedMap(const TraverseLog& sortie,
-                                                        const std::vector<Pose2>& corrected) const;
+                                                        const std::vector<Pose2>& corrected,
+                                                        const ScanAligner& aligner) const;
   uint64_t next_post_ = 1;
 };
 

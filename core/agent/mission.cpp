@@ -206,6 +206,13 @@ void MissionAgent::continueAfterFix(double now) {
   last_event_ = "sortie " + std::to_string(sortie_);
 }
 
+void MissionAgent::finish(const std::string& reason) {
+  phase_ = MissionPhase::kDone;
+  follower_.reset();
+  has_goal_ = false;
+  last_event_ = reason;
+}
+
 void MissionAgent::setTeammates(std::vector<Eigen::Vector2d> positions, bool priority) {
   teammates_ = std::move(positions);
   priority_ = priority;

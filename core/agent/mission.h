@@ -75,6 +75,9 @@ class MissionAgent {
   // In phase kAtHome: drive to `home` (the home pose as the robot's estimate now places it:
   // a fix showed the estimate off) and look again there, then wait in kAtHome once more.
   void returnAgain(const Pose2& home);
+  // Ends the mission where the robot is (e.g. it could not be localized at home: it no
+  // longer knows where it is, and exploring on would only drive it into things).
+  void finish(const std::string& reason);
   int sortie() const { return sortie_; }  // 1 for the first
   // Where the teammates are now (map frame, as they report it) and whether this robot has
   // the right of way over them (e.g. the lower index). Call before update.
