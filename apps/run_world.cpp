@@ -315,7 +315,13 @@ OccupancyGrid naiveSharedMap(const MapLimits& limits, const std::vector<RobotRun
     const std::vector<Pose2>& raw = r.mapper->rawOdometry();
     for (size_t i = 0; i < log.entries.size() && i < raw.size(); ++i)
       log.entries[i].scan.odometry = raw[i];
-    naive.post(naivePost(log, 1));
+    // Radial maps whose odometry pose has drifted off the map are dropped (one would
+    // otherwise refuse the whole post).
+    MapPost post = naivePost(log, 1);
+    std::erase_if(post.scans, [&](const PostedScan& p) {
+      return !limits.contains(limits.cellX(p.pose.x), limits.cellY(p.pose.y));
+    });
+    naive.post(post);
   }
   return naive.grid();
 }
