@@ -10,8 +10,8 @@
 #include <memory>
 #include <stdexcept>
 
-#include "apps/report_html.h"
 #include "apps/run_outputs.h"
+#include "apps/run_report.h"
 #include "core/agent/cooperation.h"
 #include "core/agent/mapper.h"
 #include "core/agent/mission.h"
@@ -63,108 +63,6 @@ const RobotRun& tallestRobot(const std::vector<RobotRun>& runs) {
   return *tallest;
 }
 
-std::string fixed(double v, int digits) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", digits, v);
-  return buf;
-}
-
-// report.html: the run on one page (apps/report_html.h).
-void writeRunReport(const RunOptions& opt, const sim::World& world, const RunResult& result,
-                    const std::vector<RobotRun>& runs) {
-  ReportData d;
-  d.title = world.name + ", seed " + std::to_string(opt.seed);
-  auto row = [&](const std::string& k, const std::string& v) { d.summary.emplace_back(k, v); };
-  row("world file", opt.world_file);
-  row("robots", std::to_string(result.robots.size()));
-  row("mode", !opt.explore ? "scripted routes"
-              : result.cooperative
-                  ? "autonomous, cooperative: sorties of " + fixed(opt.sortie_budget_m, 0) +
-                        " m, home-base protocol after each"
-                  : "autonomous, one sortie");
-  row("simulated time",
-      fixed(result.sim_time_s, 1) + " s (" + fixed(result.real_time_factor, 1) + "x real time)");
-  int collisions = 0;
-  for (const RobotRunResult& r : result.robots) collisions += r.collisions;
-  int with_static = 0, with_people = 0, with_robots = 0;
-  for (const RobotRunResult& r : result.robots) {
-    with_static += r.collisions_static;
-    with_people += r.collisions_people;
-    with_robots += r.collisions_robots;
-  }
-  row("collisions", std::to_string(collisions) + " (walls and furniture " +
-                        std::to_string(with_static) + ", people " + std::to_string(with_people) +
-                        ", robots " + std::to_string(with_robots) + ")");
-  if (opt.explore) {
-    bool complete = true;
-    for (const RobotRunResult& r : result.robots) complete = complete && r.exploration_complete;
-    row("exploration complete", complete ? "yes" : "no");
-  }
-  row("time to 90 % coverage",
-      result.time_to_90_s >= 0 ? fixed(result.time_to_90_s, 0) + " s" : "not reached");
-  const SharedMapResult& shared = result.shared_map;
-  if (shared.computed) {
-    auto metrics = [&](const MapMetrics& m) {
-      return "wall_recall " + fixed(m.wall_recall, 3) + ", false_occupied_rate " +
-             fixed(m.false_occupied_rate, 4) + ", coverage " + fixed(m.coverage, 3);
-    };
-    row("shared map (home-base protocol, " + std::to_string(shared.posts_accepted) + " posts)",
-        metrics(shared.protocol));
-    row("shared map, naive sharing", metrics(shared.naive));
-    std::string refused;
-    for (const std::string& r : shared.refused) refused += (refused.empty() ? "" : "; ") + r;
-    if (!refused.empty()) row("not shared", refused);
-  }
-  for (const RobotRunResult& r : result.robots) {
-    row(r.name + ": own map", "wall_recall " + fixed(r.map.wall_recall, 3) +
-                                  ", false_occupied_rate " + fixed(r.map.false_occupied_rate, 4) +
-                                  ", coverage " + fixed(r.map.coverage, 3) + ", path " +
-                                  fixed(r.path_length_m, 1) + " m");
-    for (const std::string& line : r.sortie_log) row(r.name, line);
-    d.robots.push_back({r.name, r.groundtruth, r.odometry, r.corrected});
-  }
-  if (!runs.empty()) {
-    d.truth = &tallestRobot(runs).truth;
-    d.limits = d.truth->limits;
-  }
-  if (shared.computed) {
-    d.images.push_back({"Shared map: home-base protocol", "shared_map.png"});
-    d.images.push_back({"Shared map: naive sharing (every radial map at its odometry pose)",
-                        "shared_map_naive.png"});
-  }
-  for (const RobotRunResult& r : result.robots) {
-    d.images.push_back({r.name + "'s map (truth green, odometry red)", "map_" + r.name + ".png"});
-    d.images.push_back({r.name + "'s map against the truth", "map_" + r.name + "_evaluation.png"});
-  }
-  ReportSeries shared_coverage{result.cooperative ? "shared map" : "all robots' maps together", {}};
-  std::vector<ReportSeries> coverage(result.robots.size()), error(result.robots.size());
-  for (size_t k = 0; k < result.robots.size(); ++k) {
-    coverage[k].name = result.robots[k].name + "'s map";
-    error[k].name = result.robots[k].name;
-  }
-  for (const TimelineSample& s : result.timeline) {
-    shared_coverage.points.emplace_back(s.t, s.shared_coverage);
-    for (size_t k = 0; k < s.robot_coverage.size(); ++k) {
-      coverage[k].points.emplace_back(s.t, s.robot_coverage[k]);
-      error[k].points.emplace_back(s.t, s.robot_error_m[k]);
-    }
-  }
-  d.coverage.push_back(std::move(shared_coverage));
-  for (ReportSeries& c : coverage) d.coverage.push_back(std::move(c));
-  d.error = std::move(error);
-  d.coverage_note =
-      "Share of the true free area reachable from the start that the map has "
-      "seen, every " +
-      fixed(opt.timeline_period_s, 0) + " s." +
-      (result.cooperative ? " The shared map grows when a robot posts a sortie "
-                            "corrected at the home base."
-                          : "");
-  d.error_note =
-      "Distance between each robot's pose estimate (odometry, corrected at each "
-      "home-base fix) and its true pose.";
-  writeReport(opt.out_dir, d);
-}
-
 void writeOutputs(const RunOptions& opt, const sim::World& world, const RunResult& result,
                   const std::vector<RobotRun>& runs) {
   std::filesystem::create_directories(opt.out_dir);
@@ -185,23 +83,7 @@ void writeOutputs(const RunOptions& opt, const sim::World& world, const RunResul
                    "map) in world " +
                    world.name);
     }
-  {
-    std::string csv = "t_s,shared_coverage";
-    for (const RobotRunResult& r : result.robots)
-      csv += "," + r.name + "_coverage," + r.name + "_error_m";
-    csv += "\n";
-    char buf[64];
-    for (const TimelineSample& s : result.timeline) {
-      std::snprintf(buf, sizeof buf, "%.2f,%.4f", s.t, s.shared_coverage);
-      csv += buf;
-      for (size_t k = 0; k < s.robot_coverage.size(); ++k) {
-        std::snprintf(buf, sizeof buf, ",%.4f,%.4f", s.robot_coverage[k], s.robot_error_m[k]);
-        csv += buf;
-      }
-      csv += "\n";
-    }
-    writeFileAtomic(opt.out_dir + "/timeline.csv", csv);
-  }
+  writeTimelineCsv(opt.out_dir + "/timeline.csv", result);
   const SharedMapResult& shared = result.shared_map;
   if (shared.computed) {
     writeRosMap(*shared.protocol_grid, opt.out_dir, "shared_map");
@@ -281,7 +163,7 @@ void writeOutputs(const RunOptions& opt, const sim::World& world, const RunResul
   j.endObject();
   j.endObject();
   writeFileAtomic(opt.out_dir + "/metrics.json", j.str());
-  writeRunReport(opt, world, result, runs);
+  writeRunReport(opt, world.name, result, runs.empty() ? nullptr : &tallestRobot(runs).truth);
 }
 
 HomeBase nominalHomeBase(const sim::World& world) {

@@ -7,6 +7,26 @@
 
 namespace coopmap {
 
+namespace {
+
+// Radial maps [begin, end) of a log placed at other poses (the corrected ones), for the
+// aligner, which places each scan at its own pose.
+struct PlacedScans {
+  PlacedScans(const TraverseLog& log, const std::vector<Pose2>& poses, size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) {
+      maps.push_back(log.entries[i].scan);
+      maps.back().odometry = poses[i];
+    }
+    for (const RadialMap& m : maps) pointers.push_back(&m);
+  }
+  PlacedScans(const PlacedScans&) = delete;
+  PlacedScans& operator=(const PlacedScans&) = delete;
+  std::vector<RadialMap> maps;
+  std::vector<const RadialMap*> pointers;
+};
+
+}  // namespace
+
 void CooperationConfig::validate() const {
   if (!(max_fix_jump_m > 0.0))
     throw std::invalid_argument(
@@ -174,16 +194,10 @@ SortieReport HomeBaseCooperation::endSortie(const TraverseLog& sortie,
     }
   }
   if (aligner) {
-    std::vector<RadialMap> look;
     const size_t n = sortie.entries.size();
     const size_t k = std::min(n, static_cast<size_t>(config_.home_check_scans));
-    for (size_t i = n - k; i < n; ++i) {
-      look.push_back(sortie.entries[i].scan);
-      look.back().odometry = c.poses[i];
-    }
-    std::vector<const RadialMap*> ptrs;
-    for (const RadialMap& m : look) ptrs.push_back(&m);
-    const std::vector<Eigen::Vector2d> points = aligner->obstaclePoints(ptrs);
+    const PlacedScans look(sortie, c.poses, n - k, n);
+    const std::vector<Eigen::Vector2d> points = aligner->obstaclePoints(look.pointers);
     if (points.size() >= 50) {
       rep.home_agreement = aligner->score(points, Pose2());
       if (rep.home_agreement < config_.min_home_agreement) {
@@ -208,14 +222,8 @@ std::vector<PoseObservation> HomeBaseCooperation::closuresAgainstSharedMap(
   std::vector<PoseObservation> out;
   const size_t n = sortie.entries.size(), k = static_cast<size_t>(config_.closure_scans);
   for (size_t begin = 0; begin + k <= n; begin += static_cast<size_t>(config_.closure_stride)) {
-    std::vector<RadialMap> scans;
-    for (size_t i = begin; i < begin + k; ++i) {
-      scans.push_back(sortie.entries[i].scan);
-      scans.back().odometry = corrected[i];
-    }
-    std::vector<const RadialMap*> ptrs;
-    for (const RadialMap& m : scans) ptrs.push_back(&m);
-    const AlignmentResult a = aligner.align(ptrs, Pose2());
+    const PlacedScans stretch(sortie, corrected, begin, begin + k);
+    const AlignmentResult a = aligner.align(stretch.pointers, Pose2());
     if (!a.ok || a.inliers < config_.closure_min_inliers * a.points) continue;
     if (a.correction.translation().norm() > config_.closure_max_m ||
         std::abs(a.correction.theta) > config_.closure_max_rad)
