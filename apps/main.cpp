@@ -20,6 +20,7 @@
 #include "apps/traverse_command.h"
 #include "core/io/json_writer.h"
 #include "core/io/yaml_reader.h"
+#include "sim/world/world.h"
 
 int main(int argc, char** argv) {
   CLI::App app{
@@ -62,10 +63,17 @@ int main(int argc, char** argv) {
                       "Record each robot's raw stream (camera images, stamps, odometry, "
                       "commands, rig and robot description) and the ground truth into this "
                       "folder, for `coopmap replay` (layout: its README.md)");
-  cmd_run->add_flag("--explore", run.explore,
+  bool explore_flag = false, routes_flag = false;
+  cmd_run->add_flag("--explore", explore_flag,
                     "Autonomous missions instead of the routes: look at the home base, explore "
                     "frontiers with OMPL paths, come home when the budget is spent or nothing "
-                    "reachable is left, look at the home base again");
+                    "reachable is left, look at the home base again (the default of a world "
+                    "with 'mission: explore')");
+  cmd_run
+      ->add_flag("--routes", routes_flag,
+                 "Follow the scripted routes of the world file (the default unless the world "
+                 "says 'mission: explore')")
+      ->excludes("--explore");
   cmd_run
       ->add_option("--sortie-budget", run.sortie_budget_m,
                    "With --explore: metres of a sortie before the robot goes home to be "
@@ -77,6 +85,14 @@ int main(int argc, char** argv) {
                    "With --explore: sorties at most (1: explore once, share after the run)")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
+  bool tracking = false;
+  cmd_run->add_flag("--tracking", tracking,
+                    "With --explore: between home-base fixes, track the estimate against the "
+                    "shared map imported at home (default: steer by calibrated odometry)");
+  bool no_calibration = false;
+  cmd_run->add_flag("--no-calibration", no_calibration,
+                    "With --explore: drive every sortie on raw odometry (default: odometry "
+                    "calibrated online with the systematic errors the home-base fixes found)");
   bool quiet = false;
   cmd_run->add_flag("--quiet", quiet, "No progress bar");
 
@@ -150,6 +166,11 @@ int main(int argc, char** argv) {
       ->add_option("--pair-consistency", eval.stereo.pair_consistency,
                    "Fraction each pair's cost at the winner may exceed its own best "
                    "(negative: off)")
+      ->capture_default_str();
+  cmd_eval
+      ->add_option("--window-shift", eval.stereo.window_shift,
+                   "Shiftable windows: px each pixel's window may move left or right against "
+                   "foreground fattening (0: centred windows, at most window / 2)")
       ->capture_default_str();
   std::string photometric = coopmap::toString(eval.stereo.photometric);
   cmd_eval
@@ -431,6 +452,10 @@ int main(int argc, char** argv) {
                   r.wall_time_s, replay.out_dir.c_str());
     }
     if (cmd_run->parsed()) {
+      run.explore = explore_flag ||
+                    (!routes_flag && coopmap::sim::loadWorld(run.world_file).mission == "explore");
+      run.track_shared_map = tracking;
+      run.calibrate_odometry = !no_calibration;
       if (robots > 0) run.robots = robots;
       if (!odometry.empty()) run.odometry = odometry;
       if (sensing_rate > 0.0) run.sensing_rate = sensing_rate;

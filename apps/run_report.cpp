@@ -51,8 +51,10 @@ void writeRunReport(const RunOptions& opt, const std::string& world_name, const 
     for (const RobotRunResult& r : result.robots) complete = complete && r.exploration_complete;
     row("exploration complete", complete ? "yes" : "no");
   }
-  row("time to 90 % coverage",
-      result.time_to_90_s >= 0 ? fixed(result.time_to_90_s, 0) + " s" : "not reached");
+  auto reached = [&](double t) { return t >= 0 ? fixed(t, 0) + " s" : std::string("not reached"); };
+  row("time to 50 / 75 / 90 % coverage", reached(result.time_to_50_s) + " / " +
+                                             reached(result.time_to_75_s) + " / " +
+                                             reached(result.time_to_90_s));
   const SharedMapResult& shared = result.shared_map;
   if (shared.computed) {
     auto metrics = [&](const MapMetrics& m) {

@@ -10,14 +10,17 @@
 #include <memory>
 #include <stdexcept>
 
+#include "apps/robot_run.h"
 #include "apps/run_outputs.h"
 #include "apps/run_report.h"
 #include "core/agent/cooperation.h"
+#include "core/agent/map_tracker.h"
 #include "core/agent/mapper.h"
 #include "core/agent/mission.h"
 #include "core/agent/route_follower.h"
 #include "core/correction/drift_correction.h"
 #include "core/correction/home_return.h"
+#include "core/correction/odometry_calibration.h"
 #include "core/io/atomic_file.h"
 #include "core/io/json_writer.h"
 #include "core/mapping/map_io.h"
@@ -30,38 +33,9 @@
 
 namespace coopmap {
 
+using namespace run_detail;
+
 namespace {
-
-struct RobotRun {
-  std::unique_ptr<SimRobot> driver;
-  std::unique_ptr<Mapper> mapper;
-  std::unique_ptr<RouteFollower> follower;
-  std::unique_ptr<MissionAgent> mission;      // autonomous runs
-  std::unique_ptr<HomeBaseCooperation> coop;  // cooperative autonomous runs
-  size_t sortie_begin = 0;                    // the current sortie's first traverse entry
-  // A robot back away from its start drives there by a first fix and looks again (the
-  // start placed in its estimate's frame by the fix; its map and log stay in that frame).
-  bool reapproaching = false;
-  Pose2 home;  // its start (the map frame is its odometry frame at the start)
-  const RadialMap* latest = nullptr;  // this step's radial map, for the mission
-  RobotRunResult result;
-  Pose2 last_true;
-  GridU8 truth;  // true occupancy up to the robot's swept height
-  // Control steps of each kind of motion since the last sensing cycle: the cycle's segment
-  // is the kind most of them had.
-  int turn_steps = 0, straight_steps = 0;
-  int recording = -1;                   // the robot's index in the recording
-  RobotDescription mapper_description;  // what the mapper was given
-};
-
-// The robot whose true occupancy the shared map is measured against: the tallest (each
-// robot's truth is the world up to its swept height).
-const RobotRun& tallestRobot(const std::vector<RobotRun>& runs) {
-  const RobotRun* tallest = &runs.front();
-  for (const RobotRun& r : runs)
-    if (r.mapper_description.swept_height > tallest->mapper_description.swept_height) tallest = &r;
-  return *tallest;
-}
 
 void writeOutputs(const RunOptions& opt, const sim::World& world, const RunResult& result,
                   const std::vector<RobotRun>& runs) {
@@ -90,6 +64,14 @@ void writeOutputs(const RunOptions& opt, const sim::World& world, const RunResul
     writeMapPng(opt.out_dir + "/shared_map.png", *shared.protocol_grid, {});
     writeRosMap(*shared.naive_grid, opt.out_dir, "shared_map_naive");
     writeMapPng(opt.out_dir + "/shared_map_naive.png", *shared.naive_grid, {});
+    if (!runs.empty()) {
+      const GridU8& truth = tallestRobot(runs).truth;
+      const GridU8 floor = sim::floorMask(world, shared.protocol_grid->limits());
+      writeFileAtomic(opt.out_dir + "/shared_map_evaluation.png",
+                      encodeEvaluationPng(*shared.protocol_grid, truth, 3, &floor));
+      writeFileAtomic(opt.out_dir + "/shared_map_naive_evaluation.png",
+                      encodeEvaluationPng(*shared.naive_grid, truth, 3, &floor));
+    }
   }
   JsonWriter j;
   j.beginObject();
@@ -122,6 +104,8 @@ void writeOutputs(const RunOptions& opt, const sim::World& world, const RunResul
     j.value("collisions", collisions);
     if (opt.explore) j.value("exploration_complete", complete);
     j.value("cooperative", result.cooperative);
+    j.value("time_to_50_percent_coverage_s", result.time_to_50_s);
+    j.value("time_to_75_percent_coverage_s", result.time_to_75_s);
     j.value("time_to_90_percent_coverage_s", result.time_to_90_s);
   }
   j.value("sim_time_s", result.sim_time_s).value("wall_time_s", result.wall_time_s);
@@ -151,6 +135,14 @@ void writeOutputs(const RunOptions& opt, const sim::World& world, const RunResul
       j.value("sortie_log", log);
       j.endObject();
     }
+    j.beginArray("contacts");
+    for (const ContactRecord& c : r.contacts) {
+      j.beginObject();
+      j.value("t", c.t).value("with", c.with).value("x", c.point.x()).value("y", c.point.y());
+      j.value("robot_x", c.robot.x).value("robot_y", c.robot.y).value("phase", c.phase);
+      j.endObject();
+    }
+    j.endArray();
     j.value("odometry_error_m", r.odometry_error_m)
         .value("odometry_error_deg", r.odometry_error_deg);
     j.beginObject("map");
@@ -164,148 +156,6 @@ void writeOutputs(const RunOptions& opt, const sim::World& world, const RunResul
   j.endObject();
   writeFileAtomic(opt.out_dir + "/metrics.json", j.str());
   writeRunReport(opt, world.name, result, runs.empty() ? nullptr : &tallestRobot(runs).truth);
-}
-
-HomeBase nominalHomeBase(const sim::World& world) {
-  HomeBase nominal;
-  nominal.first.position = world.home_base.corners[0].position;
-  nominal.first.heading = world.home_base.corners[0].heading;
-  nominal.second.position = world.home_base.corners[1].position;
-  nominal.second.heading = world.home_base.corners[1].heading;
-  return nominal;
-}
-
-// Adds `b`'s evidence to `a` (log-odds summed and clamped, seen where either has seen):
-// what two robots' maps show together.
-void mergeSeen(OccupancyGrid& a, const OccupancyGrid& b) {
-  std::vector<int16_t> lo = a.logOddsGrid().cells;
-  std::vector<uint8_t> seen = a.seenGrid().cells;
-  const std::vector<int16_t>& blo = b.logOddsGrid().cells;
-  const std::vector<uint8_t>& bseen = b.seenGrid().cells;
-  for (size_t i = 0; i < lo.size(); ++i) {
-    lo[i] = static_cast<int16_t>(std::clamp(lo[i] + blo[i], -32000, 32000));
-    seen[i] = seen[i] | bseen[i];
-  }
-  a.assign(lo, seen);
-}
-
-// The naive shared map: every radial map of every robot at its raw odometry pose.
-OccupancyGrid naiveSharedMap(const MapLimits& limits, const std::vector<RobotRun>& runs) {
-  LocalSharedMap naive(limits, OccupancyConfig{});
-  for (const RobotRun& r : runs) {
-    TraverseLog log = r.mapper->traverse();
-    const std::vector<Pose2>& raw = r.mapper->rawOdometry();
-    for (size_t i = 0; i < log.entries.size() && i < raw.size(); ++i)
-      log.entries[i].scan.odometry = raw[i];
-    // Radial maps whose odometry pose has drifted off the map are dropped (one would
-    // otherwise refuse the whole post).
-    MapPost post = naivePost(log, 1);
-    std::erase_if(post.scans, [&](const PostedScan& p) {
-      return !limits.contains(limits.cellX(p.pose.x), limits.cellY(p.pose.y));
-    });
-    naive.post(post);
-  }
-  return naive.grid();
-}
-
-// The paper's two ways of sharing: the home-base protocol (localize at the home base,
-// correct the traverse with the heading-drift model, post it) and naive posting.
-SharedMapResult shareMaps(const sim::World& world, const MapLimits& limits, const GridU8& floor,
-                          const std::vector<RobotRun>& runs) {
-  SharedMapResult out;
-  if (world.home_base.corners.size() != 2 || runs.empty()) return out;
-  LocalSharedMap protocol(limits, OccupancyConfig{});
-  const HomeBase nominal = nominalHomeBase(world);
-  for (const RobotRun& r : runs) {
-    const TraverseLog& log = r.mapper->traverse();
-    const HomeBaseProtocol p = runHomeBaseProtocol(log, nominal, world.home_base.arm_length);
-    if (p.result.status != HomeReturnStatus::kOk) {
-      out.refused.push_back(log.robot + ": " + toString(p.result.status));
-      continue;
-    }
-    CorrectionConfig config;
-    config.model = CorrectionModel::kHeadingDrift;
-    const CorrectionResult c = correctTraverse(log, p.result.observation, config);
-    if (!c.ok) {
-      out.refused.push_back(log.robot + ": " + c.message);
-      continue;
-    }
-    const PostResult posted = protocol.post(correctedPost(log, c.poses, 1));
-    if (posted.status == PostStatus::kAccepted) {
-      ++out.posts_accepted;
-      out.posted.push_back(log.robot);
-    } else {
-      out.refused.push_back(log.robot + ": " + posted.reason);
-    }
-  }
-  const GridU8& truth = tallestRobot(runs).truth;
-  const Eigen::Vector2d start = runs.front().result.groundtruth.empty()
-                                    ? world.robots.front().start.translation()
-                                    : runs.front().result.groundtruth.front().pose.translation();
-  out.protocol_grid = protocol.grid();
-  out.naive_grid = naiveSharedMap(limits, runs);
-  out.protocol = computeMapMetrics(*out.protocol_grid, truth, start, &floor);
-  out.naive = computeMapMetrics(*out.naive_grid, truth, start, &floor);
-  out.computed = true;
-  return out;
-}
-
-// The robot is back at the home base and has looked at it: localize, correct and post the
-// sortie (core/agent/cooperation.h), apply the fix to its estimate, import the shared map,
-// and send it out again.
-void endSortie(RobotRun& r, LocalSharedMap& live, double now, double reapproach_m) {
-  const TraverseLog& all = r.mapper->traverse();
-  TraverseLog sortie;
-  sortie.robot = all.robot;
-  sortie.entries.assign(all.entries.begin() + static_cast<std::ptrdiff_t>(r.sortie_begin),
-                        all.entries.end());
-  if (!r.reapproaching) {
-    // Back away from the start (odometry drifted): the home base looks different from
-    // there. Drive to the start by a first fix and look again.
-    const SortieReport first = r.coop->locate(sortie);
-    const double off = (first.fix.translation() - r.home.translation()).norm();
-    if (first.fixed && off > reapproach_m) {
-      r.reapproaching = true;
-      char line[160];
-      std::snprintf(line, sizeof line,
-                    "back %.2f m from the start at %.0f s: driving there by a first fix", off, now);
-      r.result.sortie_log.push_back(line);
-      r.mission->returnAgain(first.correction.inverse() * r.home);
-      return;
-    }
-  }
-  std::optional<Eigen::Vector2d> expected;
-  if (r.reapproaching) expected = r.home.translation();
-  r.reapproaching = false;
-  const SortieReport rep = r.coop->endSortie(sortie, expected);
-  if (rep.fixed) r.mapper->setFrame(rep.correction * r.mapper->frame());
-  const SharedMapSnapshot snap = live.snapshot();
-  if (snap.version > 0) r.mapper->importMap(snap.log_odds, snap.seen);
-  r.sortie_begin = all.entries.size();
-  // The fix against the truth (the simulator knows it; the robot does not).
-  std::string error;
-  if (rep.fixed)
-    for (auto it = r.result.groundtruth.rbegin(); it != r.result.groundtruth.rend(); ++it)
-      if (it->stamp <= rep.fix_stamp + 1e-9) {
-        const Pose2& t = it->pose;
-        const double m = std::hypot(rep.fix.x - t.x, rep.fix.y - t.y);
-        const double deg = std::abs(wrapAngle(rep.fix.theta - t.theta)) * 180.0 / M_PI;
-        r.result.fix_errors.emplace_back(m, deg);
-        char e[96];
-        std::snprintf(e, sizeof e, " (%.1f cm, %.2f deg off the truth)", 100.0 * m, deg);
-        error = e;
-        break;
-      }
-  char line[256];
-  std::snprintf(line, sizeof line, "sortie %d at %.0f s: %zu scans, %s%s%s", rep.sortie, now,
-                rep.entries, rep.fixed ? "fixed" : "no fix", error.c_str(),
-                rep.posted ? ", posted" : "");
-  r.result.sortie_log.push_back(std::string(line) + " (" + rep.method + ")");
-  if (rep.fixed)
-    r.mission->continueAfterFix(now);
-  else
-    r.mission->finish("stopped: no trusted home-base fix after sortie " +
-                      std::to_string(rep.sortie) + ", the robot does not know where it is");
 }
 
 void drawProgress(double t, double total) {
@@ -384,6 +234,7 @@ RunResult runWorld(const RunOptions& opt) {
       if (cooperative) {
         r.coop = std::make_unique<HomeBaseCooperation>(spec.name, nominalHomeBase(world),
                                                        world.home_base.arm_length, &*live);
+        r.calibrate = opt.calibrate_odometry;
       }
     }
     r.result.name = spec.name;
@@ -430,7 +281,7 @@ RunResult runWorld(const RunOptions& opt) {
     if (live) merged = live->grid();
     for (RobotRun& r : runs) {
       const Pose2 truth = sim.truePose(r.driver->index());
-      const Pose2 estimate = r.mapper->estimate(r.driver->odometry());
+      const Pose2 estimate = r.mapper->estimate(r.odo);
       out.robot_error_m.push_back(std::hypot(truth.x - estimate.x, truth.y - estimate.y));
       out.robot_coverage.push_back(
           computeMapMetrics(r.mapper->grid(), r.truth, home_position, &floor).coverage);
@@ -454,6 +305,7 @@ RunResult runWorld(const RunOptions& opt) {
     bool all_done = true;
     for (RobotRun& r : runs) {
       const int i = r.driver->index();
+      r.odo = r.calibrate ? r.calibration.calibrate(r.driver->odometry()) : r.driver->odometry();
       if (sense) {
         std::optional<TrinocularFrame> frame;
         cv::Mat depth;
@@ -471,14 +323,30 @@ RunResult runWorld(const RunOptions& opt) {
                                             ? MotionSegment::kTurn
                                             : MotionSegment::kStraight;
           r.turn_steps = r.straight_steps = 0;
+          r.raw.push_back(frame->odometry);
+          if (r.calibrate) frame->odometry = r.calibration.calibrate(frame->odometry);
           r.latest = &r.mapper->process(*frame, segment);
+          if (r.tracker.hasMap() && !r.reapproaching &&
+              (r.mission->phase() == MissionPhase::kExplore ||
+               r.mission->phase() == MissionPhase::kReturn)) {
+            // The latest radial maps at the current estimate, aligned to the shared map.
+            const std::vector<TraverseEntry>& entries = r.mapper->traverse().entries;
+            const size_t k = std::min<size_t>(6, entries.size() - r.sortie_begin);
+            std::vector<RadialMap> latest;
+            for (size_t j = entries.size() - k; j < entries.size(); ++j) {
+              latest.push_back(entries[j].scan);
+              latest.back().odometry = r.mapper->frame() * r.mapper->rawOdometry()[j];
+            }
+            if (const std::optional<Pose2> c = r.tracker.update(latest))
+              r.mapper->setFrame(*c * r.mapper->frame());
+          }
           if (recorder) recorder->addFrame(r.recording, *frame, segment);
           ++r.result.frames;
         }
       }
       r.result.groundtruth.push_back({t, sim.truePose(i)});
       r.result.odometry.push_back({t, r.driver->odometry()});
-      r.result.estimate.push_back({t, r.mapper->estimate(r.driver->odometry())});
+      r.result.estimate.push_back({t, r.mapper->estimate(r.odo)});
       // Drift experiments steer by the true pose (as a person driving the route would), so
       // the path is the intended one and odometry only records it.
       const Pose2 steer = opt.steer_by_truth ? sim.truePose(i) : r.result.estimate.back().pose;
@@ -486,7 +354,7 @@ RunResult runWorld(const RunOptions& opt) {
         // Teammates report where they believe they are (their estimates share the map frame).
         std::vector<Eigen::Vector2d> others;
         for (const RobotRun& o : runs)
-          if (&o != &r) others.push_back(o.mapper->estimate(o.driver->odometry()).translation());
+          if (&o != &r) others.push_back(o.mapper->estimate(o.odo).translation());
         r.mission->setTeammates(std::move(others), &r == &runs.front());
       }
       const MotionCommand cmd = r.mission ? r.mission->update(t, steer, r.mapper->grid(), r.latest,
@@ -494,7 +362,7 @@ RunResult runWorld(const RunOptions& opt) {
                                           : r.follower->update(steer, t);
       r.latest = nullptr;
       if (r.coop && r.mission->phase() == MissionPhase::kAtHome)
-        endSortie(r, *live, t, opt.reapproach_m);
+        endSortie(r, *live, t, opt.reapproach_m, opt.track_shared_map);
       r.driver->command(cmd);
       if (recorder)
         recorder->addControl(r.recording, t, r.result.odometry.back().pose, cmd,
@@ -522,6 +390,10 @@ RunResult runWorld(const RunOptions& opt) {
       const Pose2 p = sim.truePose(r.driver->index());
       r.result.path_length_m += std::hypot(p.x - r.last_true.x, p.y - r.last_true.y);
       r.last_true = p;
+      const std::vector<sim::ContactEvent>& log = sim.contactLog(r.driver->index());
+      for (size_t k = r.result.contacts.size(); k < log.size(); ++k)
+        r.result.contacts.push_back({log[k].time, sim::toString(log[k].kind), log[k].point, p,
+                                     r.mission ? toString(r.mission->phase()) : "route"});
     }
   }
   if (progress) std::fprintf(stderr, "\n");
@@ -532,11 +404,14 @@ RunResult runWorld(const RunOptions& opt) {
   result.timing = timing;
   result.cooperative = cooperative;
   result.timeline = std::move(timeline);
-  for (const TimelineSample& s : result.timeline)
-    if (s.shared_coverage >= 0.9) {
-      result.time_to_90_s = s.t;
-      break;
-    }
+  auto firstReaching = [&](double coverage) {
+    for (const TimelineSample& s : result.timeline)
+      if (s.shared_coverage >= coverage) return s.t;
+    return -1.0;
+  };
+  result.time_to_50_s = firstReaching(0.5);
+  result.time_to_75_s = firstReaching(0.75);
+  result.time_to_90_s = firstReaching(0.9);
   for (const RobotRun& r : runs) {
     result.timing.stereo_s += r.mapper->timing().stereo_s;
     result.timing.mapping_s += r.mapper->timing().mapping_s;

@@ -100,6 +100,10 @@ ContactCounts Simulator::contactCounts(int robot) const {
   return physics_->contactCounts(robots_.at(robot).physics_index);
 }
 
+const std::vector<ContactEvent>& Simulator::contactLog(int robot) const {
+  return physics_->contactLog(robots_.at(robot).physics_index);
+}
+
 Eigen::Isometry3d Simulator::cameraPose(int robot, int camera) const {
   const RobotState& r = robots_.at(robot);
   const TrinocularRig& rig = r.config.description.rig;

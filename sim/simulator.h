@@ -65,6 +65,7 @@ class Simulator {
   // A robot's distinct contacts since start, by what it touched (status().contact_events
   // counts them all as one kind).
   ContactCounts contactCounts(int robot) const;
+  const std::vector<ContactEvent>& contactLog(int robot) const;  // each contact: when, what, where
 
  private:
   struct RobotState {

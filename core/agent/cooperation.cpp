@@ -46,6 +46,10 @@ void CooperationConfig::validate() const {
         std::to_string(max_fix_jump_rad));
   home_return.validate();
   closure_alignment.validate();
+  if (self_closure_gap < 0)
+    throw std::invalid_argument(
+        "cooperation config: field 'self_closure_gap': expected an integer >= 0, got " +
+        std::to_string(self_closure_gap));
   if (closure_scans < 1 || closure_stride < 1)
     throw std::invalid_argument(
         "cooperation config: fields 'closure_scans' and 'closure_stride': expected at least 1, "
@@ -179,22 +183,45 @@ SortieReport HomeBaseCooperation::endSortie(const TraverseLog& sortie,
     map->assign(snap.log_odds, snap.seen);
     aligner.emplace(*map, config_.closure_alignment);
   }
+  std::vector<PoseObservation> closures;
+  std::string closure_note;
+  const size_t n = sortie.entries.size();
   if (config_.closures && aligner) {
-    const std::vector<PoseObservation> closures =
-        closuresAgainstSharedMap(sortie, c.poses, *aligner);
-    if (!closures.empty()) {
-      CorrectionConfig graph = config_.correction;
-      graph.model = CorrectionModel::kPoseGraph;
-      CorrectionResult g = correctTraverse(sortie, observation, graph, closures);
-      if (g.ok) {
-        c = std::move(g);
-        rep.closures = static_cast<int>(closures.size());
-        rep.method += " + " + std::to_string(closures.size()) + " closures to the shared map";
-      }
+    closures = closuresAgainst(sortie, c.poses, *aligner, 0, n);
+    if (!closures.empty())
+      closure_note += " + " + std::to_string(closures.size()) + " closures to the shared map";
+  }
+  const size_t gap = static_cast<size_t>(config_.self_closure_gap);
+  if (config_.self_closures && n >= 2 * gap + 4 * static_cast<size_t>(config_.closure_scans)) {
+    // The sortie against itself: stretches of its second half aligned to the map of its first
+    // half, and the other way round, leaving out `gap` entries either side of the middle so
+    // that no stretch aligns to the scans it was taken among. Out and back meet where the
+    // robot came by again, and the pose graph makes them agree.
+    const size_t mid = n / 2;
+    OccupancyGrid first(shared_->limits(), shared_->config());
+    OccupancyGrid second(shared_->limits(), shared_->config());
+    for (size_t i = 0; i + gap < mid; ++i) first.insert(sortie.entries[i].scan, c.poses[i]);
+    for (size_t i = mid + gap; i < n; ++i) second.insert(sortie.entries[i].scan, c.poses[i]);
+    const ScanAligner to_first(first, config_.closure_alignment);
+    const ScanAligner to_second(second, config_.closure_alignment);
+    std::vector<PoseObservation> self = closuresAgainst(sortie, c.poses, to_first, mid, n);
+    const std::vector<PoseObservation> back = closuresAgainst(sortie, c.poses, to_second, 0, mid);
+    self.insert(self.end(), back.begin(), back.end());
+    if (!self.empty())
+      closure_note += " + " + std::to_string(self.size()) + " closures within the sortie";
+    closures.insert(closures.end(), self.begin(), self.end());
+  }
+  if (!closures.empty()) {
+    CorrectionConfig graph = config_.correction;
+    graph.model = CorrectionModel::kPoseGraph;
+    CorrectionResult g = correctTraverse(sortie, observation, graph, closures);
+    if (g.ok) {
+      c = std::move(g);
+      rep.closures = static_cast<int>(closures.size());
+      rep.method += closure_note;
     }
   }
   if (aligner) {
-    const size_t n = sortie.entries.size();
     const size_t k = std::min(n, static_cast<size_t>(config_.home_check_scans));
     const PlacedScans look(sortie, c.poses, n - k, n);
     const std::vector<Eigen::Vector2d> points = aligner->obstaclePoints(look.pointers);
@@ -208,6 +235,11 @@ SortieReport HomeBaseCooperation::endSortie(const TraverseLog& sortie,
       }
     }
   }
+  rep.bias = c.bias;
+  for (size_t i = 1; i < sortie.entries.size(); ++i)
+    rep.length_m += (sortie.entries[i].scan.odometry.translation() -
+                     sortie.entries[i - 1].scan.odometry.translation())
+                        .norm();
   rep.post = shared_->post(correctedPost(sortie, c.poses, next_post_++));
   rep.posted = rep.post.status == PostStatus::kAccepted;
   if (rep.posted)
@@ -216,12 +248,12 @@ SortieReport HomeBaseCooperation::endSortie(const TraverseLog& sortie,
   return done();
 }
 
-std::vector<PoseObservation> HomeBaseCooperation::closuresAgainstSharedMap(
-    const TraverseLog& sortie, const std::vector<Pose2>& corrected,
-    const ScanAligner& aligner) const {
+std::vector<PoseObservation> HomeBaseCooperation::closuresAgainst(
+    const TraverseLog& sortie, const std::vector<Pose2>& corrected, const ScanAligner& aligner,
+    size_t from, size_t to) const {
   std::vector<PoseObservation> out;
-  const size_t n = sortie.entries.size(), k = static_cast<size_t>(config_.closure_scans);
-  for (size_t begin = 0; begin + k <= n; begin += static_cast<size_t>(config_.closure_stride)) {
+  const size_t k = static_cast<size_t>(config_.closure_scans);
+  for (size_t begin = from; begin + k <= to; begin += static_cast<size_t>(config_.closure_stride)) {
     const PlacedScans stretch(sortie, corrected, begin, begin + k);
     const AlignmentResult a = aligner.align(stretch.pointers, Pose2());
     if (!a.ok || a.inliers < config_.closure_min_inliers * a.points) continue;

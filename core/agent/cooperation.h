@@ -39,6 +39,10 @@ struct CooperationConfig {
   double closure_max_rad = 0.1;
   double closure_sigma_xy = 0.05;     // m, 1-sigma of a closure
   double closure_sigma_theta = 0.02;  // rad
+  // Closures within the sortie too (beyond the paper): stretches of each half aligned to
+  // the other half's map, leaving self_closure_gap entries out either side of the middle.
+  bool self_closures = true;
+  int self_closure_gap = 60;
   AlignmentConfig closure_alignment;
   // Before posting: the last home_check_scans radial maps (the look at home) at their
   // corrected poses must put at least this share of their obstacle points on the shared
@@ -63,6 +67,10 @@ struct SortieReport {
   int closures = 0;              // stretches aligned to the shared map (pose-graph closures)
   double home_agreement = -1.0;  // share of the look's points on the shared map (-1: none)
   uint64_t map_version = 0;      // of the shared map imported afterwards
+  // The systematic odometry errors the correction fitted (of the odometry the sortie ran
+  // on), and the distance driven: for online odometry calibration.
+  OdometryBias bias;
+  double length_m = 0.0;
 };
 
 class HomeBaseCooperation {
@@ -108,10 +116,12 @@ class HomeBaseCooperation {
     std::optional<HomeBaseProtocol> protocol;  // the first sortie's registration
   };
   Located locateSortie(const TraverseLog& sortie) const;
-  // Closures of a corrected sortie against the shared map as it is now.
-  std::vector<PoseObservation> closuresAgainstSharedMap(const TraverseLog& sortie,
-                                                        const std::vector<Pose2>& corrected,
-                                                        const ScanAligner& aligner) const;
+  // Closures of the corrected sortie's stretches within entries [from, to) against a map
+  // (the shared map as it is now, or the other half of the sortie).
+  std::vector<PoseObservation> closuresAgainst(const TraverseLog& sortie,
+                                               const std::vector<Pose2>& corrected,
+                                               const ScanAligner& aligner, size_t from,
+                                               size_t to) const;
   uint64_t next_post_ = 1;
 };
 

@@ -1,5 +1,6 @@
 #include "core/agent/mission.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -35,6 +36,14 @@ void MissionConfig::validate() const {
   positive("team_wait_s", team_wait_s);
   positive("team_radius", team_radius);
   positive("look_from_m", look_from_m);
+  positive("bump_radius", bump_radius);
+  if (firm_log_odds < 1)
+    throw std::invalid_argument("mission config: field 'firm_log_odds': expected at least 1, got " +
+                                std::to_string(firm_log_odds));
+  if (max_sortie_bumps < 1)
+    throw std::invalid_argument(
+        "mission config: field 'max_sortie_bumps': expected at least 1, got " +
+        std::to_string(max_sortie_bumps));
   if (max_return_bumps < 1)
     throw std::invalid_argument(
         "mission config: field 'max_return_bumps': expected at least 1, got " +
@@ -92,14 +101,29 @@ bool MissionAgent::obstacleAhead(const RadialMap& scan) const {
 }
 
 PlanningMap MissionAgent::planningMap(const OccupancyGrid& map, bool allow_unknown) const {
-  // Where the robot has been is free, whatever the cameras saw of it (they never see
-  // beneath the robot).
+  // Where the robot has been is free though the cameras never saw it (they never see beneath
+  // the robot), or saw a weak obstacle there (a stereo mismatch). Not where they saw an
+  // obstacle again and again: the estimate drifts, so "where it has been" can lie on a table
+  // it saw a minute ago.
   const MapLimits& lim = map.limits();
   Grid<CellState> states(lim, CellState::kUnknown);
   for (int iy = 0; iy < lim.height; ++iy)
-    for (int ix = 0; ix < lim.width; ++ix)
-      states.at(ix, iy) =
-          visited_.cells.empty() || !visited_.at(ix, iy) ? map.state(ix, iy) : CellState::kFree;
+    for (int ix = 0; ix < lim.width; ++ix) {
+      const CellState seen = map.state(ix, iy);
+      const bool visited = !visited_.cells.empty() && visited_.at(ix, iy);
+      const bool firm =
+          seen == CellState::kOccupied && map.logOdds(ix, iy) >= config_.firm_log_odds;
+      states.at(ix, iy) = visited && !firm ? CellState::kFree : seen;
+    }
+  // What the bumpers touched this sortie.
+  const int nb = static_cast<int>(std::ceil(config_.bump_radius / lim.resolution));
+  for (const Eigen::Vector2d& p : bumps_) {
+    const int cx = lim.cellX(p.x()), cy = lim.cellY(p.y());
+    for (int iy = cy - nb; iy <= cy + nb; ++iy)
+      for (int ix = cx - nb; ix <= cx + nb; ++ix)
+        if (lim.contains(ix, iy) && (lim.cellCenter(ix, iy) - p).norm() <= config_.bump_radius)
+          states.at(ix, iy) = CellState::kOccupied;
+  }
   // Teammates are obstacles while they stand where they are.
   const double radius = config_.team_radius;
   const int n = static_cast<int>(std::ceil(radius / lim.resolution));
@@ -200,6 +224,8 @@ void MissionAgent::continueAfterFix(double now) {
   phase_ = MissionPhase::kExplore;
   sortie_start_ = now;
   travelled_ = 0.0;
+  sortie_bumps_ = 0;
+  bumps_.clear();  // the estimate's frame changes with the fix
   pose_jumped_ = true;
   has_goal_ = false;
   follower_.reset();
@@ -256,6 +282,12 @@ MotionCommand MissionAgent::update(double now, const Pose2& odometry, const Occu
   if (bumped && moving && backoff_until_ < 0.0) {
     ++safety_stops_;
     backoff_until_ = now + config_.backoff_s;
+    // The bumper found what the map missed (too low, too thin, or drift put it elsewhere):
+    // an obstacle where the robot touched it, in the frame of its estimate like its map.
+    if (last_command_.linear != 0.0) {
+      const double edge = config_.planning.robot_radius + 0.5 * config_.bump_radius;
+      bumps_.push_back(odometry * Eigen::Vector2d(last_command_.linear > 0.0 ? edge : -edge, 0.0));
+    }
     if (phase_ == MissionPhase::kExplore) {
       if (has_goal_) explorer_.blacklist(goal_);
       ++goals_failed_;
@@ -266,6 +298,13 @@ MotionCommand MissionAgent::update(double now, const Pose2& odometry, const Occu
   }
   if (backoff_until_ >= 0.0 && now >= backoff_until_) {
     backoff_until_ = -1.0;
+    if (++sortie_bumps_ >= config_.max_sortie_bumps) {
+      // Wheels that push against something slip: the odometry no longer says where the robot
+      // is, and a look at "home" from wherever it is could give a wrong fix. Stay put.
+      finish("stopped: bumped " + std::to_string(sortie_bumps_) +
+             " times in this sortie, the odometry cannot be trusted");
+      return last_command_ = MotionCommand::stop();
+    }
     if (phase_ == MissionPhase::kReturn) {
       if (++return_bumps_ >= config_.max_return_bumps &&
           (odometry.translation() - target_.translation()).norm() < config_.look_from_m) {
@@ -353,7 +392,8 @@ MotionCommand MissionAgent::update(double now, const Pose2& odometry, const Occu
         if (has_goal_) explorer_.blacklist(goal_);
         follower_.reset();
       }
-      if (follower_ && now - last_check_ >= config_.replan_period_s) {
+      if (follower_ && has_goal_ && path_.waypoints.size() >= 2 &&
+          now - last_check_ >= config_.replan_period_s) {
         // The map grew under the path: go on if it is still free, else plan anew.
         last_check_ = now;
         const PlanningMap planning = planningMap(map, false);

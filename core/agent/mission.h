@@ -31,6 +31,10 @@ struct MissionConfig {
                                      // driving time is given up (blacklisted)
   double backoff_s = 1.5;            // s of backing off at 0.1 m/s after a bump
   double escape_radius = 0.6;        // m: a robot on a blocked cell steps to a free one this near
+  double bump_radius = 0.1;          // m: what a bump shows is drawn as an obstacle disc this big
+  // Cells the robot has driven over count as free in its planning map unless the map holds
+  // them occupied at least this firmly (log-odds in hundredths, OccupancyConfig).
+  int firm_log_odds = 400;
   // Sorties: with more than one, the budget is per sortie, and after each look at home the
   // mission waits (phase kAtHome) until the caller has localized it, corrected and shared
   // its traverse and imported the shared map (continueAfterFix), then goes again.
@@ -46,6 +50,9 @@ struct MissionConfig {
   // Bumped this many times on the way home within look_from_m of it, the robot looks at the
   // home base from where it is (the fix then takes it home).
   int max_return_bumps = 2;
+  // Bumped this many times in one sortie, the robot stops for good (its wheels slipped: the
+  // odometry is lost, and going on would only push into more things).
+  int max_sortie_bumps = 6;
   double look_from_m = 2.0;
   FrontierConfig frontiers;
   PlannerConfig planner;
@@ -94,6 +101,7 @@ class MissionAgent {
  private:
   void startRoute(std::vector<Waypoint> route, double now);
   PlanningMap planningMap(const OccupancyGrid& map, bool allow_unknown) const;
+  std::vector<Eigen::Vector2d> bumps_;  // where the bumpers touched something this sortie
   void markVisited(const OccupancyGrid& map, const Pose2& odometry);
   bool obstacleAhead(const RadialMap& scan) const;
   void chooseGoal(double now, const Pose2& odometry, const OccupancyGrid& map);
@@ -119,6 +127,7 @@ class MissionAgent {
   bool pose_jumped_ = false;
   bool plan_home_ = false;  // returnAgain: plan the way home at the next update
   int return_bumps_ = 0;
+  int sortie_bumps_ = 0;
   std::vector<Eigen::Vector2d> teammates_;
   bool priority_ = false;
   double team_wait_until_ = -1.0;  // waiting for a teammate ahead until then

@@ -23,19 +23,24 @@ struct Step {
   MotionSegment segment = MotionSegment::kStop;
 };
 
+// One odometry increment u = X_O(i-1)O(i) as a step.
+Step stepOf(const Pose2& u) {
+  Step s;
+  s.ds = std::hypot(u.x, u.y);
+  s.phi = s.ds > 1e-9 ? std::atan2(u.y, u.x) : 0.0;
+  if (std::cos(s.phi) < 0.0) {  // backwards
+    s.ds = -s.ds;
+    s.phi = wrapAngle(s.phi + M_PI);
+  }
+  s.dtheta = u.theta;
+  return s;
+}
+
 std::vector<Step> stepsOf(const TraverseLog& log, size_t last) {
   std::vector<Step> steps;
   steps.reserve(last);
   for (size_t i = 1; i <= last; ++i) {
-    const Pose2 u = log.entries[i - 1].scan.odometry.inverse() * log.entries[i].scan.odometry;
-    Step s;
-    s.ds = std::hypot(u.x, u.y);
-    s.phi = s.ds > 1e-9 ? std::atan2(u.y, u.x) : 0.0;
-    if (std::cos(s.phi) < 0.0) {  // backwards
-      s.ds = -s.ds;
-      s.phi = wrapAngle(s.phi + M_PI);
-    }
-    s.dtheta = u.theta;
+    Step s = stepOf(log.entries[i - 1].scan.odometry.inverse() * log.entries[i].scan.odometry);
     s.segment = log.entries[i].segment;
     steps.push_back(s);
   }
@@ -184,6 +189,14 @@ ceres::Solver::Options solverOptions(int max_iterations) {
 }
 
 }  // namespace
+
+Pose2 correctedIncrement(const Pose2& u, const OdometryBias& bias) {
+  const Step s = stepOf(u);
+  const double b[3] = {bias.heading_drift, bias.turn_scale, bias.distance_scale};
+  double ds, phi, dtheta;
+  correctedStep(s, b, &ds, &phi, &dtheta);
+  return Pose2(ds * std::cos(phi), ds * std::sin(phi), dtheta);
+}
 
 const char* toString(CorrectionModel m) {
   switch (m) {

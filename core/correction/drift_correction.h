@@ -73,6 +73,10 @@ struct CorrectionResult {
   double final_cost = 0.0;   // solver cost (fitted models)
 };
 
+// The motion the robot really made in one odometry increment u = X_O(i-1)O(i) if its
+// odometry erred by exactly `bias` (the step model of the fitted corrections).
+Pose2 correctedIncrement(const Pose2& u, const OdometryBias& bias);
+
 // Corrects the poses of every entry of `log` given the home-base observation. Entries
 // after the observed one move rigidly with it. `closures` are further observations of
 // poses along the way (loop closures, e.g. scans matched to the map made at the start);

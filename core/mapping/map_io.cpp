@@ -79,7 +79,8 @@ std::string encodeMapPng(const OccupancyGrid& grid, const std::vector<Trajectory
   return std::string(buf.begin(), buf.end());
 }
 
-std::string encodeEvaluationPng(const OccupancyGrid& grid, const GridU8& truth, int scale) {
+std::string encodeEvaluationPng(const OccupancyGrid& grid, const GridU8& truth, int scale,
+                                const GridU8* drivable) {
   const MapLimits& lim = grid.limits();
   cv::Mat img(lim.height * scale, lim.width * scale, CV_8UC3);
   auto near = [&](int x, int y, auto&& pred) {
@@ -98,6 +99,8 @@ std::string encodeEvaluationPng(const OccupancyGrid& grid, const GridU8& truth, 
         const bool found =
             near(ix, iy, [&](int a, int b) { return grid.state(a, b) == CellState::kOccupied; });
         c = !wall ? cv::Vec3b(90, 90, 90) : found ? cv::Vec3b(0, 0, 0) : cv::Vec3b(0, 0, 230);
+      } else if (drivable && !drivable->at(ix, iy)) {
+        c = grid.seen(ix, iy) ? cv::Vec3b(215, 200, 200) : cv::Vec3b(150, 140, 140);
       } else if (occ) {
         const bool by_wall = near(ix, iy, [&](int a, int b) { return truth.at(a, b) != 0; });
         c = by_wall ? cv::Vec3b(120, 120, 120) : cv::Vec3b(230, 80, 0);

@@ -24,8 +24,10 @@ std::string encodeMapPng(const OccupancyGrid& grid, const std::vector<Trajectory
 
 // Renders the map against the true occupancy (same limits), for people: black = wall found,
 // red = true wall next to seen free space with no occupied map cell within 1 cell,
-// blue = occupied in the map but free in truth, white = seen free, grey = unseen.
-std::string encodeEvaluationPng(const OccupancyGrid& grid, const GridU8& truth, int scale = 3);
+// blue = occupied in the map but free in truth, white = seen free, grey = unseen; with
+// `drivable`, cells off it (which the metrics do not score) are drawn in bluish greys.
+std::string encodeEvaluationPng(const OccupancyGrid& grid, const GridU8& truth, int scale = 3,
+                                const GridU8* drivable = nullptr);
 
 // Writes the colour PNG atomically.
 void writeMapPng(const std::string& path, const OccupancyGrid& grid,

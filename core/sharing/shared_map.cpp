@@ -182,24 +182,55 @@ uint64_t LocalSharedMap::version() const {
   return version_;
 }
 
-MapPost correctedPost(const TraverseLog& log, const std::vector<Pose2>& corrected,
-                      uint64_t post_id) {
+void PostThinning::validate() const {
+  if (!(min_move_m >= 0.0))
+    throw std::invalid_argument("post thinning: field 'min_move_m': expected a number >= 0, got " +
+                                std::to_string(min_move_m));
+  if (!(min_turn_rad >= 0.0))
+    throw std::invalid_argument(
+        "post thinning: field 'min_turn_rad': expected a number >= 0, got " +
+        std::to_string(min_turn_rad));
+}
+
+namespace {
+
+// Appends the scans at their poses, skipping those taken less than the thinning's motion
+// from the last one kept.
+template <typename PoseOf>
+void appendThinned(MapPost& post, const TraverseLog& log, const PostThinning& thinning,
+                   PoseOf&& poseOf) {
+  thinning.validate();
+  const Pose2* last = nullptr;
+  for (size_t i = 0; i < log.entries.size(); ++i) {
+    const Pose2& pose = poseOf(i);
+    if (last && std::hypot(pose.x - last->x, pose.y - last->y) < thinning.min_move_m &&
+        std::abs(wrapAngle(pose.theta - last->theta)) < thinning.min_turn_rad)
+      continue;
+    post.scans.push_back({log.entries[i].scan, pose});
+    last = &pose;
+  }
+}
+
+}  // namespace
+
+MapPost correctedPost(const TraverseLog& log, const std::vector<Pose2>& corrected, uint64_t post_id,
+                      const PostThinning& thinning) {
   if (corrected.size() != log.entries.size())
     throw std::invalid_argument("correctedPost: " + std::to_string(corrected.size()) +
                                 " poses for a log of " + std::to_string(log.entries.size()));
   MapPost p;
   p.robot = log.robot;
   p.post_id = post_id;
-  for (size_t i = 0; i < corrected.size(); ++i)
-    p.scans.push_back({log.entries[i].scan, corrected[i]});
+  appendThinned(p, log, thinning, [&](size_t i) -> const Pose2& { return corrected[i]; });
   return p;
 }
 
-MapPost naivePost(const TraverseLog& log, uint64_t post_id) {
+MapPost naivePost(const TraverseLog& log, uint64_t post_id, const PostThinning& thinning) {
   MapPost p;
   p.robot = log.robot;
   p.post_id = post_id;
-  for (const TraverseEntry& e : log.entries) p.scans.push_back({e.scan, e.scan.odometry});
+  appendThinned(p, log, thinning,
+                [&](size_t i) -> const Pose2& { return log.entries[i].scan.odometry; });
   return p;
 }
 

@@ -94,12 +94,23 @@ class LocalSharedMap final : public SharedMapService {
   std::string file_;
 };
 
-// A robot's corrected traverse as a post: every entry's radial map at its corrected pose.
-// Throws std::invalid_argument when the pose count differs from the log's.
-MapPost correctedPost(const TraverseLog& log, const std::vector<Pose2>& corrected,
-                      uint64_t post_id);
-// The paper's "simplest form of cooperation": every radial map at its uncorrected odometry
-// pose, as it is taken.
-MapPost naivePost(const TraverseLog& log, uint64_t post_id);
+// A motion filter on what is posted (GMapping's linearUpdate/angularUpdate, Cartographer's
+// motion filter): a robot standing still takes the same view again and again, with the same
+// stereo errors, and posting all of them lets one viewpoint's phantoms outvote the free space
+// seen from everywhere else. A radial map is posted when the robot has moved min_move_m or
+// turned min_turn_rad since the last one posted (the first always is). Zeros post all.
+struct PostThinning {
+  double min_move_m = 0.1;
+  double min_turn_rad = 0.1;
+  void validate() const;  // throws std::invalid_argument naming the field
+};
+
+// A robot's corrected traverse as a post: its entries' radial maps at their corrected poses,
+// thinned. Throws std::invalid_argument when the pose count differs from the log's.
+MapPost correctedPost(const TraverseLog& log, const std::vector<Pose2>& corrected, uint64_t post_id,
+                      const PostThinning& thinning = {});
+// The paper's "simplest form of cooperation": the radial maps at their uncorrected odometry
+// poses, as they are taken (thinned the same way, so that only the poses differ).
+MapPost naivePost(const TraverseLog& log, uint64_t post_id, const PostThinning& thinning = {});
 
 }  // namespace coopmap

@@ -395,6 +395,57 @@ void updateColumnSums(uint16_t* __restrict colsum, const uint8_t* __restrict add
   }
 }
 
+COOPMAP_SIMD_CLONES
+void boxRow(const uint16_t* __restrict colsum, int width, int nd, int window,
+            uint16_t* __restrict box) {
+  const int r = window / 2;
+  if (width < window) return;
+  uint16_t* first = box + static_cast<size_t>(r) * nd;
+  std::fill(first, first + nd, 0);
+  for (int x = 0; x < window; ++x) addRow(first, colsum + static_cast<size_t>(x) * nd, nd);
+  for (int x = r + 1; x < width - r; ++x) {
+    const uint16_t* prev = box + static_cast<size_t>(x - 1) * nd;
+    const uint16_t* add = colsum + static_cast<size_t>(x + r) * nd;
+    const uint16_t* drop = colsum + static_cast<size_t>(x - r - 1) * nd;
+    uint16_t* out = box + static_cast<size_t>(x) * nd;
+    for (int d = 0; d < nd; ++d) out[d] = static_cast<uint16_t>(prev[d] + add[d] - drop[d]);
+  }
+}
+
+COOPMAP_SIMD_CLONES
+void shiftWindows(const uint16_t* __restrict a, const uint16_t* __restrict b, int width, int nd,
+                  int r, int shift, uint32_t* __restrict keys, uint16_t* __restrict out_a,
+                  uint16_t* __restrict out_b) {
+  const size_t n = static_cast<size_t>(nd);
+  // key = summed cost << 16 | cost of pair a: the smallest key is the best window, and
+  // carries pair a's cost (pair b's is the difference).
+  for (int x = r; x < width - r; ++x) {
+    const uint16_t* ca = a + x * n;
+    const uint16_t* cb = b ? b + x * n : nullptr;
+    uint32_t* key = keys + x * n;
+    if (cb) {
+      for (int d = 0; d < nd; ++d) key[d] = (uint32_t(ca[d]) + uint32_t(cb[d])) << 16 | ca[d];
+    } else {
+      for (int d = 0; d < nd; ++d) key[d] = uint32_t(ca[d]) << 16 | ca[d];
+    }
+  }
+  uint32_t* best = keys + static_cast<size_t>(width) * n;  // the extra row
+  for (int x = r; x < width - r; ++x) {
+    const int lo = std::max(r, x - shift), hi = std::min(width - r - 1, x + shift);
+    std::copy_n(keys + lo * n, n, best);
+    for (int c = lo + 1; c <= hi; ++c) {
+      const uint32_t* key = keys + c * n;
+      for (int d = 0; d < nd; ++d) best[d] = std::min(best[d], key[d]);
+    }
+    uint16_t* oa = out_a + x * n;
+    for (int d = 0; d < nd; ++d) oa[d] = static_cast<uint16_t>(best[d] & 0xFFFFu);
+    if (out_b) {
+      uint16_t* ob = out_b + x * n;
+      for (int d = 0; d < nd; ++d) ob[d] = static_cast<uint16_t>((best[d] >> 16) - oa[d]);
+    }
+  }
+}
+
 void chooseRow(const uint16_t* colsum_a, const uint16_t* colsum_b, int width, int nd, int window,
                const uint8_t* skip, uint32_t uniqueness, uint16_t* scratch, Choice* choices) {
 #ifdef COOPMAP_HAVE_AVX2_PATH

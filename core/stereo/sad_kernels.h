@@ -41,6 +41,18 @@ void differenceRow(const uint8_t* ref, int width, int nd, const PairRow& a, cons
 // colsum[i] += add[i] - drop[i] over n entries (drop may be null).
 void updateColumnSums(uint16_t* colsum, const uint8_t* add, const uint8_t* drop, size_t n);
 
+// Horizontal window sums of one row of column sums ([x][d]): box[x] = colsum[x - window / 2]
+// + ... + colsum[x + window / 2] for x in [window / 2, width - window / 2); others untouched.
+void boxRow(const uint16_t* colsum, int width, int nd, int window, uint16_t* box);
+
+// Shiftable windows over one row of window sums ([x][d], valid for x in [r, width - r)):
+// for every pixel x in that range and disparity d, the window centred at c in
+// [x - shift, x + shift] (clipped to the range) with the lowest summed cost a[c][d] +
+// b[c][d]; out_a and out_b get that window's costs of each pair (b, out_b null: one pair).
+// `keys` holds (width + 1) * nd entries of scratch.
+void shiftWindows(const uint16_t* a, const uint16_t* b, int width, int nd, int r, int shift,
+                  uint32_t* keys, uint16_t* out_a, uint16_t* out_b);
+
 // Slides a window x window box along one output row of column sums ([x][d]) and chooses
 // per pixel x in [window / 2, width - window / 2) where skip[x] is 0 (others are left as
 // they were). colsum_b null: one pair only. The pairs' own minima are only filled in where

@@ -62,6 +62,10 @@ void StereoConfig::validate() const {
   if (prefilter_window < 3 || prefilter_window > 31 || prefilter_window % 2 == 0)
     throw std::invalid_argument(
         fieldError("prefilter_window", "an odd number in 3..31", prefilter_window));
+  if (window_shift < 0 || window_shift > window / 2)
+    throw std::invalid_argument(fieldError(
+        "window_shift", "an integer in 0..window / 2 (" + std::to_string(window / 2) + ")",
+        window_shift));
   if (prefilter_cap < 1 || prefilter_cap > 127)
     throw std::invalid_argument(fieldError("prefilter_cap", "1..127", prefilter_cap));
   if (!use_horizontal && !use_vertical)
@@ -106,7 +110,12 @@ TrinocularMatcher::TrinocularMatcher(const TrinocularRig& rig, const StereoConfi
   for (int p = 0; p < used; ++p) {
     ring_[p].assign(row * (config_.window + 1), 0);
     colsum_[p].assign(row, 0);
+    if (config_.window_shift > 0) {
+      box_[p].assign(row, 0);
+      shifted_[p].assign(row, 0);
+    }
   }
+  if (config_.window_shift > 0) keys_.assign(row + config_.num_disparities, 0);
   scratch_.assign(3 * static_cast<size_t>(config_.num_disparities), 0);
   choices_.assign(width_, sad::Choice{});
   skip_.assign(width_, 0);
@@ -255,6 +264,22 @@ void TrinocularMatcher::prefilter(const cv::Mat& in, cv::Mat& out) {
   }
 }
 
+// Chooses every pixel of the current output row on shiftable windows (Bobick and Intille;
+// Fusiello et al.'s SMW, here along x only): per disparity, the lowest summed cost among the
+// windows centred up to window_shift px left or right of the pixel, each pair taking its
+// cost from that same window. Then the usual choice (chooseRow with a one-column "window"
+// over those costs).
+void TrinocularMatcher::chooseShifted(bool both, uint32_t uniqueness) {
+  const int nd = config_.num_disparities, r = config_.window / 2, s = config_.window_shift;
+  for (int p = 0; p < (both ? 2 : 1); ++p)
+    sad::boxRow(colsum_[p].data(), width_, nd, config_.window, box_[p].data());
+  sad::shiftWindows(box_[0].data(), both ? box_[1].data() : nullptr, width_, nd, r, s, keys_.data(),
+                    shifted_[0].data(), both ? shifted_[1].data() : nullptr);
+  for (int x = 0; x < r; ++x) skip_[x] = skip_[width_ - 1 - x] = 1;  // no window sums there
+  sad::chooseRow(shifted_[0].data(), both ? shifted_[1].data() : nullptr, width_, nd, 1,
+                 skip_.data(), uniqueness, scratch_.data(), choices_.data());
+}
+
 StereoStats TrinocularMatcher::match(const cv::Mat& reference, const cv::Mat& horizontal,
                                      const cv::Mat& vertical, cv::Mat& disparity) {
   const cv::Mat* partners[2] = {&horizontal, &vertical};
@@ -297,8 +322,12 @@ StereoStats TrinocularMatcher::match(const cv::Mat& reference, const cv::Mat& ho
     const uint16_t* tex = texture_.data() + static_cast<size_t>(yc) * width_;
     const uint8_t* ref_row = reference.ptr<uint8_t>(yc);
     for (int x = 0; x < width_; ++x) skip_[x] = tex[x] < min_texture_sum;
-    sad::chooseRow(colsum_[0].data(), both ? colsum_[1].data() : nullptr, width_, nd, w,
-                   skip_.data(), static_cast<uint32_t>(uniq), scratch_.data(), choices_.data());
+    if (config_.window_shift > 0) {
+      chooseShifted(both, static_cast<uint32_t>(uniq));
+    } else {
+      sad::chooseRow(colsum_[0].data(), both ? colsum_[1].data() : nullptr, width_, nd, w,
+                     skip_.data(), static_cast<uint32_t>(uniq), scratch_.data(), choices_.data());
+    }
     for (int x = r; x < width_ - r; ++x) {
       const sad::Choice& ch = choices_[x];
       if (skip_[x]) {

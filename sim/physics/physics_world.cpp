@@ -23,6 +23,7 @@ struct Robot {
   // What the robot touched in the last step (static world, people, robots) and the counts.
   std::array<bool, 3> touching_kind{};
   ContactCounts counts;
+  std::vector<ContactEvent> log;
 };
 
 namespace {
@@ -223,20 +224,24 @@ void PhysicsWorld::step() {
 
   // Contacts with anything but the floor, by the kind of what was touched.
   std::vector<std::array<bool, 3>> touching(im.robots.size(), std::array<bool, 3>{});
+  std::vector<std::array<btVector3, 3>> where(im.robots.size());
   const int manifolds = im.dispatcher.getNumManifolds();
   for (int i = 0; i < manifolds; ++i) {
     const btPersistentManifold* mf = im.dispatcher.getManifoldByIndexInternal(i);
     const btCollisionObject* a = mf->getBody0();
     const btCollisionObject* b = mf->getBody1();
     if (a == im.floor || b == im.floor) continue;
-    bool real = false;
+    int real = -1;
     for (int c = 0; c < mf->getNumContacts(); ++c)
-      if (mf->getContactPoint(c).getDistance() < 0.002f) real = true;
-    if (!real) continue;
+      if (mf->getContactPoint(c).getDistance() < 0.002f) real = c;
+    if (real < 0) continue;
+    const btVector3 point = mf->getContactPoint(real).getPositionWorldOnA();
     for (size_t k = 0; k < im.robots.size(); ++k) {
       const btCollisionObject* self = im.robots[k]->body.get();
-      if (a == self) touching[k][kindOf(b)] = true;
-      if (b == self) touching[k][kindOf(a)] = true;
+      const btCollisionObject* other = a == self ? b : b == self ? a : nullptr;
+      if (!other) continue;
+      touching[k][kindOf(other)] = true;
+      where[k][kindOf(other)] = point;
     }
   }
   for (size_t k = 0; k < im.robots.size(); ++k) {
@@ -246,7 +251,11 @@ void PhysicsWorld::step() {
     r.contact = any;
     int* counts[3] = {&r.counts.static_world, &r.counts.people, &r.counts.robots};
     for (int kind = 0; kind < 3; ++kind) {
-      if (touching[k][kind] && !r.touching_kind[kind]) ++*counts[kind];
+      if (touching[k][kind] && !r.touching_kind[kind]) {
+        ++*counts[kind];
+        r.log.push_back({time_, static_cast<ContactEvent::Kind>(kind),
+                         Eigen::Vector2d(where[k][kind].x(), where[k][kind].y())});
+      }
       r.touching_kind[kind] = touching[k][kind];
     }
   }
@@ -276,6 +285,21 @@ BodyVelocity PhysicsWorld::wheelVelocity(int robot) const {
 }
 
 bool PhysicsWorld::inContact(int robot) const { return impl_->robots.at(robot)->contact; }
+const std::vector<ContactEvent>& PhysicsWorld::contactLog(int robot) const {
+  return impl_->robots.at(robot)->log;
+}
+
+const char* toString(ContactEvent::Kind k) {
+  switch (k) {
+    case ContactEvent::Kind::kPerson:
+      return "person";
+    case ContactEvent::Kind::kRobot:
+      return "robot";
+    default:
+      return "static_world";
+  }
+}
+
 int PhysicsWorld::contactEvents(int robot) const { return impl_->robots.at(robot)->contact_events; }
 ContactCounts PhysicsWorld::contactCounts(int robot) const {
   return impl_->robots.at(robot)->counts;

@@ -35,6 +35,14 @@ struct ContactCounts {
   int robots = 0;        // other robots
 };
 
+// One contact event: when it began, what was touched, and where (the contact point, world).
+struct ContactEvent {
+  double time = 0.0;  // s
+  enum class Kind { kStaticWorld, kPerson, kRobot } kind = Kind::kStaticWorld;
+  Eigen::Vector2d point{0.0, 0.0};  // m, world
+};
+const char* toString(ContactEvent::Kind k);  // "static_world", "person", "robot"
+
 class PhysicsWorld {
  public:
   // Builds the static world. `step` is the fixed physics step (s).
@@ -66,6 +74,7 @@ class PhysicsWorld {
   bool inContact(int robot) const;               // touching a solid (not the floor) now
   int contactEvents(int robot) const;            // new contacts since start
   ContactCounts contactCounts(int robot) const;  // the same, by what was touched
+  const std::vector<ContactEvent>& contactLog(int robot) const;  // each kind's events, in order
   double stepSize() const { return step_; }
   double time() const { return time_; }
   int robotCount() const;

@@ -165,6 +165,9 @@ struct World {
   double physics_rate = 200.0;      // Hz
   double sensing_rate = 3.0;        // Hz (the paper's rate)
   double control_rate = 20.0;       // Hz
+  // What `coopmap run` does by default: "routes" (each robot follows its scripted route) or
+  // "explore" (autonomous missions: sorties from the home base, shared map).
+  std::string mission = "routes";
 
   // Every solid that never moves, as boxes: walls, furniture, doors that stay closed,
   // home-base arms.

@@ -189,10 +189,14 @@ Eigen::Vector3d TargetSpec::cornerInWorld(int i, int j) const {
 World parseWorld(const std::string& text, const std::string& file) {
   const YamlField root = YamlField::loadString(text, file);
   root.allowOnly({"name", "seed", "floor", "simulation", "textures", "walls", "boxes", "doors",
-                  "home_base", "robots", "people", "surfaces", "targets"});
+                  "home_base", "robots", "people", "surfaces", "targets", "mission"});
   World w;
   w.file = file;
   w.name = root["name"].asString();
+  if (const auto mission = root.get("mission")) {
+    w.mission = mission->asString();
+    if (w.mission != "routes" && w.mission != "explore") mission->fail("'routes' or 'explore'");
+  }
   if (root.has("seed")) w.seed = static_cast<uint64_t>(root["seed"].asInt(0, 1 << 30));
 
   const YamlField textures = root["textures"];

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "core/stereo/trinocular_matcher.h"
+#include "tests/core/box_scene.h"
 
 namespace coopmap {
 namespace {
@@ -100,6 +101,51 @@ TEST(RadialMapTest, SpikeBetweenAgreeingNeighboursIsRemoved) {
   for (int u = 91; u < 95; ++u) {
     ASSERT_EQ(m2.readings[u].kind, RadialKind::kHit);
     EXPECT_NEAR(m2.readings[u].range * std::cos(m2.readings[u].bearing), 8.0 / 12.0, 1e-4);
+  }
+}
+
+// Stereo to radial map: a textured box 1 m away (disparity 8) in front of a weakly textured
+// background 8 m away (beyond range). Centred SAD windows give the background beside the
+// box's vertical edges the box's disparity over the whole band, and the radial map then
+// reports the box up to window / 2 columns too wide on each side: "phantom" obstacles
+// beside furniture. Shiftable windows (window_shift 2) leave at most window / 2 -
+// window_shift of them.
+TEST(RadialMapTest, StereoDoesNotWidenAnObstacleIntoTheBackground) {
+  const RobotDescription r = robot();
+  const test::BoxScene scene;  // box columns 60..99, rows 30..89 (0.53 .. 1.27 m high)
+  const test::BoxViews v = test::renderBoxScene(scene);
+  auto radial = [&](int window_shift) {
+    StereoConfig stereo;
+    stereo.window_shift = window_shift;
+    cv::Mat disparity;
+    TrinocularMatcher(r.rig, stereo).compute(v.ref, v.hor, v.ver, disparity);
+    return buildRadialMap(disparity, r, RadialMapConfig{}, 0.0, Pose2());
+  };
+  // Hits in the columns k px left and right of the box.
+  auto hitsBeside = [&](const RadialMap& m, int k) {
+    int hits = 0;
+    for (int u : {scene.box.x - k, scene.box.x + scene.box.width - 1 + k})
+      hits += m.readings[u].kind == RadialKind::kHit;
+    return hits;
+  };
+  const StereoConfig defaults;
+  const int half = defaults.window / 2, shift = 2;
+  const RadialMap centred = radial(0), shiftable = radial(shift);
+  int old_phantoms = 0, new_phantoms = 0;
+  for (int k = 1; k <= half; ++k) {
+    old_phantoms += hitsBeside(centred, k);
+    new_phantoms += hitsBeside(shiftable, k);
+    if (k > half - shift) {
+      EXPECT_EQ(hitsBeside(shiftable, k), 0) << k;
+    }
+  }
+  EXPECT_GE(old_phantoms, 4);  // the old rule's phantom columns
+  EXPECT_LE(new_phantoms, 2 * (half - shift));
+  // The box is still seen in every one of its columns, at its range.
+  for (int u = scene.box.x; u < scene.box.x + scene.box.width; ++u) {
+    const RadialReading& rd = shiftable.readings[u];
+    ASSERT_EQ(rd.kind, RadialKind::kHit) << u;
+    EXPECT_NEAR(rd.range * std::cos(rd.bearing), 1.0, 0.05) << u;
   }
 }
 

@@ -152,14 +152,37 @@ TEST(SharedMapTest, CorrectedAndNaivePosts) {
     e.scan.odometry = Pose2(1.0 + 0.1 * i, 2.0, 0.0);
     log.entries.push_back(e);
   }
-  const MapPost naive = naivePost(log, 1);
+  const MapPost naive = naivePost(log, 1, PostThinning{0.0, 0.0});
   ASSERT_EQ(naive.scans.size(), 3u);
   EXPECT_EQ(naive.scans[2].pose.x, log.entries[2].scan.odometry.x);
   const std::vector<Pose2> corrected(3, Pose2(1.5, 2.5, 0.1));
-  const MapPost fixed = correctedPost(log, corrected, 2);
+  const MapPost fixed = correctedPost(log, corrected, 2, PostThinning{0.0, 0.0});
   EXPECT_EQ(fixed.robot, "jose");
   EXPECT_EQ(fixed.scans[1].pose.y, 2.5);
   EXPECT_THROW(correctedPost(log, {Pose2()}, 3), std::invalid_argument);
+}
+
+TEST(SharedMapTest, PostsAreThinnedToOneScanPerViewpoint) {
+  // A robot that stands still, then drives in 6 cm steps, then turns on the spot.
+  TraverseLog log;
+  log.robot = "eric";
+  auto add = [&](double x, double theta) {
+    TraverseEntry e;
+    e.scan = wallScan();
+    e.scan.odometry = Pose2(x, 2.0, theta);
+    log.entries.push_back(e);
+  };
+  for (int i = 0; i < 10; ++i) add(1.0, 0.0);             // still: one view
+  for (int i = 1; i <= 6; ++i) add(1.0 + 0.06 * i, 0.0);  // 0.36 m: every other scan
+  for (int i = 1; i <= 4; ++i) add(1.36, 0.07 * i);       // 0.28 rad: every other scan
+  const MapPost thinned = naivePost(log, 1);
+  ASSERT_EQ(thinned.scans.size(), 1u + 3u + 2u);
+  EXPECT_NEAR(thinned.scans[1].pose.x, 1.12, 1e-9);
+  EXPECT_NEAR(thinned.scans[5].pose.theta, 0.28, 1e-9);
+  const std::vector<Pose2> corrected(log.entries.size(), Pose2(1.5, 2.5, 0.1));
+  EXPECT_EQ(correctedPost(log, corrected, 2).scans.size(), 1u);  // all at one corrected pose
+  EXPECT_EQ(naivePost(log, 3, PostThinning{0.0, 0.0}).scans.size(), log.entries.size());
+  EXPECT_THROW(naivePost(log, 4, PostThinning{-1.0, 0.0}), std::invalid_argument);
 }
 
 }  // namespace

@@ -11,6 +11,8 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
+#include "tests/core/box_scene.h"
+
 namespace coopmap {
 namespace {
 
@@ -142,6 +144,54 @@ TEST(TrinocularMatcherTest, PairSumResolvesRepeatedTextureThatFoolsOnePair) {
   EXPECT_GT(pair_sum, 0.95);
 }
 
+// Valid pixels of the background columns `k` px left and right of the box, and how many
+// of them took the box's disparity (within 1 px): "foreground fattening".
+Agreement besideTheBox(const cv::Mat& disp, const test::BoxScene& s, int k) {
+  Agreement a;
+  for (int x : {s.box.x - k, s.box.x + s.box.width - 1 + k})
+    for (int y = s.box.y; y < s.box.y + s.box.height; ++y) {
+      const float got = disp.at<float>(y, x);
+      if (got == kInvalidDisparity) continue;
+      ++a.valid;
+      a.good += std::abs(got - s.box_disparity) < 1.0;
+    }
+  return a;
+}
+
+TEST(TrinocularMatcherTest, ShiftableWindowsDoNotFattenTheForeground) {
+  const test::BoxScene scene;
+  const test::BoxViews v = test::renderBoxScene(scene);
+  StereoConfig centred;
+  centred.window_shift = 0;
+  StereoConfig shiftable;
+  shiftable.window_shift = 2;
+  const int r = shiftable.window / 2, s = shiftable.window_shift;
+  ASSERT_GT(s, 0);
+  cv::Mat d_centred, d_shiftable;
+  TrinocularMatcher(rig160(), centred).compute(v.ref, v.hor, v.ver, d_centred);
+  TrinocularMatcher(rig160(), shiftable).compute(v.ref, v.hor, v.ver, d_shiftable);
+  const int column_pixels = 2 * scene.box.height;  // one column each side
+  for (int k = 1; k <= r; ++k) {
+    const Agreement fat_centred = besideTheBox(d_centred, scene, k);
+    const Agreement fat_shiftable = besideTheBox(d_shiftable, scene, k);
+    std::printf(
+        "%d px beside the box, with its disparity: centred %d of %d valid, shiftable %d of %d\n", k,
+        fat_centred.good, fat_centred.valid, fat_shiftable.good, fat_shiftable.valid);
+    // Centred 7 x 7 windows give the background up to r px beside the box its disparity ...
+    EXPECT_GT(fat_centred.good, column_pixels / 2) << k;
+    // ... windows that may move s px off the edge leave at most r - s px of it.
+    if (k > r - s) {
+      EXPECT_LT(fat_shiftable.good, column_pixels / 20) << k;
+    }
+  }
+  // The box itself is matched as densely and exactly as before.
+  const cv::Rect inside(scene.box.x + 1, scene.box.y + 1, scene.box.width - 2,
+                        scene.box.height - 2);
+  const Agreement in_shiftable = agreement(d_shiftable, inside, scene.box_disparity);
+  EXPECT_GT(in_shiftable.valid, 0.95 * inside.area());
+  EXPECT_GT(in_shiftable.good, 0.98 * in_shiftable.valid);
+}
+
 TEST(TrinocularMatcherTest, ConfigValidationNamesTheField) {
   StereoConfig c;
   c.window = 8;
@@ -152,6 +202,19 @@ TEST(TrinocularMatcherTest, ConfigValidationNamesTheField) {
     EXPECT_NE(std::string(e.what()).find("'window'"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("odd"), std::string::npos) << e.what();
   }
+  c = StereoConfig{};
+  c.window_shift = 4;  // more than half the 7 px window: the pixel would leave its window
+  try {
+    c.validate();
+    FAIL() << "expected an exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("'window_shift'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("got 4"), std::string::npos) << e.what();
+  }
+  c.window_shift = -1;
+  EXPECT_THROW(c.validate(), std::invalid_argument);
+  c.window_shift = 0;
+  EXPECT_NO_THROW(c.validate());
 }
 
 }  // namespace

@@ -5,12 +5,16 @@
 // map), posts it, imports the shared map and goes again. The same radial maps are also
 // shared naively (every one at its odometry pose).
 //
-// Measured (`coopmap run worlds/lab.yaml --explore --seed N`, seeds 1-5): shared map
-// wall_recall 0.973 / 0.973 / 0.947 / 0.958 / 0.957 against naive 0.519 / 0.384 / 0.520 /
-// 0.546 / 0.560; false_occupied_rate 0.0146 / 0.0176 / 0.0175 / 0.0133 / 0.0213 against
-// 0.0534 / 0.0546 / 0.0496 / 0.0435 / 0.0456; coverage >= 0.993. Fixes that were posted:
-// 0.3-1.6 cm, <= 0.51 deg. Not yet met: false_occupied_rate <= 0.01 and 0 collisions
-// (0-6 per run, mostly a drifting robot coming home into a teammate standing there).
+// Beyond the paper: closures within each sortie (its halves aligned to each other), posts
+// thinned to one radial map per 10 cm or 0.1 rad, and odometry calibrated online from the
+// fixes' fitted systematic errors.
+//
+// Measured (`coopmap run worlds/lab.yaml --explore --seed N`, seeds 1-10, session 4):
+// shared-map wall_recall 0.910 / 0.973 / 0.947 / 0.922 / 0.966 / 0.962 / 0.878 / 0.954 /
+// 0.950 / 0.948 (mean 0.941) against naive 0.36-0.62; false_occupied_rate 0.0082-0.0276
+// (mean 0.0177) against naive 0.030-0.057; coverage >= 0.984; contacts 3 / 0 / 2 / 0 / 0 /
+// 0 / 0 / 0 / 0 / 1. Not yet met: false_occupied_rate <= 0.01 (2 of 10 runs), wall_recall
+// >= 0.95 (5 of 10) and 0 contacts (7 of 10).
 #include <cstdio>
 
 #include <gtest/gtest.h>
@@ -45,6 +49,10 @@ TEST(CooperativeScenarioTest, TwoRobotsShareOnlyCorrectedSortiesAndBeatNaiveShar
       EXPECT_EQ(robot.mission_phase, "done") << robot.name << ", seed " << seed;
       // Every fix is measured against the truth; the posted ones must be good.
       EXPECT_EQ(robot.fix_errors.size(), static_cast<size_t>(robot.sorties_fixed));
+      // Every contact is logged with what was touched.
+      EXPECT_EQ(robot.contacts.size(),
+                static_cast<size_t>(robot.collisions_static + robot.collisions_people +
+                                    robot.collisions_robots));
       for (const auto& [m, deg] : robot.fix_errors) {
         EXPECT_LE(m, 0.03) << robot.name << ", seed " << seed;
         EXPECT_LE(deg, 0.75) << robot.name << ", seed " << seed;
@@ -54,7 +62,7 @@ TEST(CooperativeScenarioTest, TwoRobotsShareOnlyCorrectedSortiesAndBeatNaiveShar
     EXPECT_GT(s.protocol.wall_recall, s.naive.wall_recall + 0.2) << "seed " << seed;
     EXPECT_LT(s.protocol.false_occupied_rate, s.naive.false_occupied_rate) << "seed " << seed;
     EXPECT_GE(s.protocol.wall_recall, 0.9) << "seed " << seed;
-    EXPECT_LE(s.protocol.false_occupied_rate, 0.025) << "seed " << seed;
+    EXPECT_LE(s.protocol.false_occupied_rate, 0.02) << "seed " << seed;
     // The timeline ends with the run, and the shared map it shows is the final one.
     ASSERT_FALSE(r.timeline.empty());
     EXPECT_NEAR(r.timeline.back().shared_coverage, s.protocol.coverage, 1e-9);

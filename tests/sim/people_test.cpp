@@ -180,6 +180,16 @@ TEST(PersonYieldTest, WallContactsAreCountedApartFromPeople) {
   EXPECT_EQ(c.static_world, 1);
   EXPECT_EQ(c.people, 0);
   EXPECT_EQ(sim.status(0).contact_events, 1);
+  // The log says when and where: on the wall's near face (y = 1 - thickness / 2), ahead of
+  // the robot, once it has driven the ~0.7 m between its front and the wall.
+  const std::vector<ContactEvent>& log = sim.contactLog(0);
+  ASSERT_EQ(log.size(), 1u);
+  EXPECT_EQ(log[0].kind, ContactEvent::Kind::kStaticWorld);
+  EXPECT_STREQ(toString(log[0].kind), "static_world");
+  EXPECT_NEAR(log[0].point.y(), 1.0 - 0.5 * wall.thickness, 0.02);
+  EXPECT_NEAR(log[0].point.x(), 0.0, 0.1);
+  EXPECT_GT(log[0].time, 2.0);
+  EXPECT_LT(log[0].time, 6.0);
 }
 
 // Two walkers on a loop cross a robot that drives back and forth across their path; the

@@ -73,6 +73,16 @@ TEST(WorldLoaderTest, ShippedWorldsLoad) {
   }
 }
 
+TEST(WorldLoaderTest, MissionSaysWhatRunDoesByDefault) {
+  EXPECT_EQ(parseWorld(minimal(), "w.yaml").mission, "routes");
+  EXPECT_EQ(parseWorld("mission: explore\n" + minimal(), "w.yaml").mission, "explore");
+  EXPECT_EQ(loadWorld(kSrc + "/worlds/lab_corridor.yaml").mission, "explore");
+  const std::string e = errorOf("mission: wander\n" + minimal());
+  EXPECT_NE(e.find("w.yaml:1:10: mission: expected 'routes' or 'explore', got 'wander'"),
+            std::string::npos)
+      << e;
+}
+
 TEST(WorldLoaderTest, NegativeThicknessNamesLineAndField) {
   const std::string e = errorOf(
       replaceLine(minimal(), 6, "  - {from: [0, 0], to: [5, 0], thickness: -0.1, texture: a}"));

@@ -1,0 +1,79 @@
+// The run loop's per-robot state and the sharing steps it takes (apps/run_world.cpp):
+// internal to the runner, shared by run_world.cpp and run_sharing.cpp.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "apps/run_world.h"
+#include "core/agent/cooperation.h"
+#include "core/agent/map_tracker.h"
+#include "core/agent/mapper.h"
+#include "core/agent/mission.h"
+#include "core/agent/route_follower.h"
+#include "core/correction/odometry_calibration.h"
+#include "core/localization/home_base.h"
+#include "core/sharing/shared_map.h"
+#include "robots/sim/sim_robot.h"
+#include "sim/world/world.h"
+
+namespace coopmap::run_detail {
+
+struct RobotRun {
+  std::unique_ptr<SimRobot> driver;
+  std::unique_ptr<Mapper> mapper;
+  std::unique_ptr<RouteFollower> follower;
+  std::unique_ptr<MissionAgent> mission;      // autonomous runs
+  std::unique_ptr<HomeBaseCooperation> coop;  // cooperative autonomous runs
+  size_t sortie_begin = 0;                    // the current sortie's first traverse entry
+  // A robot back away from its start drives there by a first fix and looks again (the
+  // start placed in its estimate's frame by the fix; its map and log stay in that frame).
+  bool reapproaching = false;
+  Pose2 home;  // its start (the map frame is its odometry frame at the start)
+  // The estimate's frame (X_MO) when the sortie began. The tracker moves the estimate during
+  // the sortie; the sortie is corrected on its odometry chain from this frame.
+  Pose2 sortie_frame;
+  MapTracker tracker;  // against the shared map imported at the last home visit
+  // Cooperative runs: odometry calibrated online from the fixes; the mapper, the mission
+  // and the teammates see the calibrated odometry. `raw` keeps what the encoders said at
+  // each radial map (naive sharing posts at it).
+  OdometryCalibration calibration;
+  bool calibrate = false;
+  std::vector<Pose2> raw;
+  Pose2 odo;  // this step's odometry as the robot uses it (calibrated when `calibrate`)
+  const RadialMap* latest = nullptr;  // this step's radial map, for the mission
+  RobotRunResult result;
+  Pose2 last_true;
+  GridU8 truth;  // true occupancy up to the robot's swept height
+  // Control steps of each kind of motion since the last sensing cycle: the cycle's segment
+  // is the kind most of them had.
+  int turn_steps = 0, straight_steps = 0;
+  int recording = -1;                   // the robot's index in the recording
+  RobotDescription mapper_description;  // what the mapper was given
+};
+
+// The robot whose true occupancy the shared map is measured against: the tallest (each
+// robot's truth is the world up to its swept height).
+inline const RobotRun& tallestRobot(const std::vector<RobotRun>& runs) {
+  const RobotRun* tallest = &runs.front();
+  for (const RobotRun& r : runs)
+    if (r.mapper_description.swept_height > tallest->mapper_description.swept_height) tallest = &r;
+  return *tallest;
+}
+
+// The home base as the world file designed it (map frame).
+HomeBase nominalHomeBase(const sim::World& world);
+// Adds `b`'s evidence to `a` (log-odds summed and clamped, seen where either has seen).
+void mergeSeen(OccupancyGrid& a, const OccupancyGrid& b);
+// The naive shared map: every radial map of every robot at its raw odometry pose.
+OccupancyGrid naiveSharedMap(const MapLimits& limits, const std::vector<RobotRun>& runs);
+// After a scripted run: the paper's two ways of sharing, the home-base protocol (localize at
+// the home base, correct the traverse with the heading-drift model, post it) and naive.
+SharedMapResult shareMaps(const sim::World& world, const MapLimits& limits, const GridU8& floor,
+                          const std::vector<RobotRun>& runs);
+// The robot is back at the home base and has looked at it: localize, correct and post the
+// sortie (core/agent/cooperation.h), apply the fix to its estimate, import the shared map,
+// and send it out again (or stop it, without a trusted fix).
+void endSortie(RobotRun& r, LocalSharedMap& live, double now, double reapproach_m, bool track);
+
+}  // namespace coopmap::run_detail

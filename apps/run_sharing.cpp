@@ -1,0 +1,172 @@
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "apps/robot_run.h"
+#include "core/correction/drift_correction.h"
+#include "core/correction/home_return.h"
+#include "core/mapping/map_metrics.h"
+
+namespace coopmap::run_detail {
+
+HomeBase nominalHomeBase(const sim::World& world) {
+  HomeBase nominal;
+  nominal.first.position = world.home_base.corners[0].position;
+  nominal.first.heading = world.home_base.corners[0].heading;
+  nominal.second.position = world.home_base.corners[1].position;
+  nominal.second.heading = world.home_base.corners[1].heading;
+  return nominal;
+}
+
+// Adds `b`'s evidence to `a` (log-odds summed and clamped, seen where either has seen):
+// what two robots' maps show together.
+void mergeSeen(OccupancyGrid& a, const OccupancyGrid& b) {
+  std::vector<int16_t> lo = a.logOddsGrid().cells;
+  std::vector<uint8_t> seen = a.seenGrid().cells;
+  const std::vector<int16_t>& blo = b.logOddsGrid().cells;
+  const std::vector<uint8_t>& bseen = b.seenGrid().cells;
+  for (size_t i = 0; i < lo.size(); ++i) {
+    lo[i] = static_cast<int16_t>(std::clamp(lo[i] + blo[i], -32000, 32000));
+    seen[i] = seen[i] | bseen[i];
+  }
+  a.assign(lo, seen);
+}
+
+// The naive shared map: every radial map of every robot at its raw odometry pose.
+OccupancyGrid naiveSharedMap(const MapLimits& limits, const std::vector<RobotRun>& runs) {
+  LocalSharedMap naive(limits, OccupancyConfig{});
+  for (const RobotRun& r : runs) {
+    TraverseLog log = r.mapper->traverse();
+    const std::vector<Pose2>& raw = r.raw;
+    for (size_t i = 0; i < log.entries.size() && i < raw.size(); ++i)
+      log.entries[i].scan.odometry = raw[i];
+    // Radial maps whose odometry pose has drifted off the map are dropped (one would
+    // otherwise refuse the whole post).
+    MapPost post = naivePost(log, 1);
+    std::erase_if(post.scans, [&](const PostedScan& p) {
+      return !limits.contains(limits.cellX(p.pose.x), limits.cellY(p.pose.y));
+    });
+    naive.post(post);
+  }
+  return naive.grid();
+}
+
+// The paper's two ways of sharing: the home-base protocol (localize at the home base,
+// correct the traverse with the heading-drift model, post it) and naive posting.
+SharedMapResult shareMaps(const sim::World& world, const MapLimits& limits, const GridU8& floor,
+                          const std::vector<RobotRun>& runs) {
+  SharedMapResult out;
+  if (world.home_base.corners.size() != 2 || runs.empty()) return out;
+  LocalSharedMap protocol(limits, OccupancyConfig{});
+  const HomeBase nominal = nominalHomeBase(world);
+  for (const RobotRun& r : runs) {
+    const TraverseLog& log = r.mapper->traverse();
+    const HomeBaseProtocol p = runHomeBaseProtocol(log, nominal, world.home_base.arm_length);
+    if (p.result.status != HomeReturnStatus::kOk) {
+      out.refused.push_back(log.robot + ": " + toString(p.result.status));
+      continue;
+    }
+    CorrectionConfig config;
+    config.model = CorrectionModel::kHeadingDrift;
+    const CorrectionResult c = correctTraverse(log, p.result.observation, config);
+    if (!c.ok) {
+      out.refused.push_back(log.robot + ": " + c.message);
+      continue;
+    }
+    const PostResult posted = protocol.post(correctedPost(log, c.poses, 1));
+    if (posted.status == PostStatus::kAccepted) {
+      ++out.posts_accepted;
+      out.posted.push_back(log.robot);
+    } else {
+      out.refused.push_back(log.robot + ": " + posted.reason);
+    }
+  }
+  const GridU8& truth = tallestRobot(runs).truth;
+  const Eigen::Vector2d start = runs.front().result.groundtruth.empty()
+                                    ? world.robots.front().start.translation()
+                                    : runs.front().result.groundtruth.front().pose.translation();
+  out.protocol_grid = protocol.grid();
+  out.naive_grid = naiveSharedMap(limits, runs);
+  out.protocol = computeMapMetrics(*out.protocol_grid, truth, start, &floor);
+  out.naive = computeMapMetrics(*out.naive_grid, truth, start, &floor);
+  out.computed = true;
+  return out;
+}
+
+// The robot is back at the home base and has looked at it: localize, correct and post the
+// sortie (core/agent/cooperation.h), apply the fix to its estimate, import the shared map,
+// and send it out again.
+void endSortie(RobotRun& r, LocalSharedMap& live, double now, double reapproach_m, bool track) {
+  const TraverseLog& all = r.mapper->traverse();
+  TraverseLog sortie;
+  sortie.robot = all.robot;
+  sortie.entries.assign(all.entries.begin() + static_cast<std::ptrdiff_t>(r.sortie_begin),
+                        all.entries.end());
+  // The sortie on its odometry chain from where it began (the tracker's steps are not motion).
+  for (size_t j = 0; j < sortie.entries.size(); ++j)
+    sortie.entries[j].scan.odometry = r.sortie_frame * r.mapper->rawOdometry()[r.sortie_begin + j];
+  if (!r.reapproaching) {
+    // Back away from the start (odometry drifted): the home base looks different from
+    // there. Drive to the start by a first fix and look again.
+    const SortieReport first = r.coop->locate(sortie);
+    const double off = (first.fix.translation() - r.home.translation()).norm();
+    if (first.fixed && off > reapproach_m) {
+      r.reapproaching = true;
+      char line[160];
+      std::snprintf(line, sizeof line,
+                    "back %.2f m from the start at %.0f s: driving there by a first fix", off, now);
+      r.result.sortie_log.push_back(line);
+      // The start in the estimate's frame now (the fix is in the chain's frame).
+      r.mission->returnAgain(r.mapper->frame() * r.sortie_frame.inverse() *
+                             first.correction.inverse() * r.home);
+      return;
+    }
+  }
+  std::optional<Eigen::Vector2d> expected;
+  if (r.reapproaching) expected = r.home.translation();
+  r.reapproaching = false;
+  const SortieReport rep = r.coop->endSortie(sortie, expected);
+  if (rep.fixed) r.mapper->setFrame(rep.correction * r.sortie_frame);
+  if (rep.posted && r.calibrate) r.calibration.addSortie(rep.bias, rep.length_m);
+  r.sortie_frame = r.mapper->frame();
+  const SharedMapSnapshot snap = live.snapshot();
+  if (snap.version > 0) {
+    r.mapper->importMap(snap.log_odds, snap.seen);
+    if (track) r.tracker.setMap(r.mapper->grid());
+  }
+  r.sortie_begin = all.entries.size();
+  // The fix against the truth (the simulator knows it; the robot does not).
+  std::string error;
+  if (rep.fixed)
+    for (auto it = r.result.groundtruth.rbegin(); it != r.result.groundtruth.rend(); ++it)
+      if (it->stamp <= rep.fix_stamp + 1e-9) {
+        const Pose2& t = it->pose;
+        const double m = std::hypot(rep.fix.x - t.x, rep.fix.y - t.y);
+        const double deg = std::abs(wrapAngle(rep.fix.theta - t.theta)) * 180.0 / M_PI;
+        r.result.fix_errors.emplace_back(m, deg);
+        char e[96];
+        std::snprintf(e, sizeof e, " (%.1f cm, %.2f deg off the truth)", 100.0 * m, deg);
+        error = e;
+        break;
+      }
+  char line[256];
+  std::snprintf(line, sizeof line, "sortie %d at %.0f s: %zu scans, %s%s%s", rep.sortie, now,
+                rep.entries, rep.fixed ? "fixed" : "no fix", error.c_str(),
+                rep.posted ? ", posted" : "");
+  std::string calibration;
+  if (r.calibrate && r.calibration.weight_m() > 0.0) {
+    char c[128];
+    std::snprintf(c, sizeof c, "; odometry calibration: heading drift %.4f rad/m, turn scale %.4f",
+                  r.calibration.bias().heading_drift, r.calibration.bias().turn_scale);
+    calibration = c;
+  }
+  r.result.sortie_log.push_back(std::string(line) + " (" + rep.method + calibration + ")");
+  if (rep.fixed)
+    r.mission->continueAfterFix(now);
+  else
+    r.mission->finish("stopped: no trusted home-base fix after sortie " +
+                      std::to_string(rep.sortie) + ", the robot does not know where it is");
+}
+
+}  // namespace coopmap::run_detail
