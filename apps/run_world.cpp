@@ -37,8 +37,9 @@ using namespace run_detail;
 
 namespace {
 
+// `floor`: the drivable floor over the run's map limits (what the metrics score).
 void writeOutputs(const RunOptions& opt, const sim::World& world, const RunResult& result,
-                  const std::vector<RobotRun>& runs) {
+                  const std::vector<RobotRun>& runs, const GridU8& floor) {
   std::filesystem::create_directories(opt.out_dir);
   for (const RobotRun& r : runs)
     writeRobotOutputs(opt.out_dir,
@@ -66,7 +67,6 @@ void writeOutputs(const RunOptions& opt, const sim::World& world, const RunResul
     writeMapPng(opt.out_dir + "/shared_map_naive.png", *shared.naive_grid, {});
     if (!runs.empty()) {
       const GridU8& truth = tallestRobot(runs).truth;
-      const GridU8 floor = sim::floorMask(world, shared.protocol_grid->limits());
       writeFileAtomic(opt.out_dir + "/shared_map_evaluation.png",
                       encodeEvaluationPng(*shared.protocol_grid, truth, 3, &floor));
       writeFileAtomic(opt.out_dir + "/shared_map_naive_evaluation.png",
@@ -475,7 +475,7 @@ RunResult runWorld(const RunOptions& opt) {
   result.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   result.real_time_factor = result.wall_time_s > 0 ? result.sim_time_s / result.wall_time_s : 0.0;
-  if (!opt.out_dir.empty()) writeOutputs(opt, world, result, runs);
+  if (!opt.out_dir.empty()) writeOutputs(opt, world, result, runs, floor);
   return result;
 }
 

@@ -50,7 +50,9 @@ class Mapper {
   // Replaces the robot's map with an imported one (the shared map), same limits and rule.
   // Throws std::invalid_argument when the layers do not fit.
   void importMap(const std::vector<int16_t>& log_odds, const std::vector<uint8_t>& seen);
-  // The raw odometry of every traverse entry (the log holds the estimate), for naive sharing.
+  // The odometry each traverse entry's frame carried (the log holds the estimate): the
+  // odometry chain a sortie is corrected on. (The caller may hand the mapper calibrated
+  // odometry; naive sharing keeps the encoders' own.)
   const std::vector<Pose2>& rawOdometry() const { return raw_odometry_; }
   const cv::Mat& lastDisparity() const { return disparity_; }
   const TraverseLog& traverse() const { return traverse_; }

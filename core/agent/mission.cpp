@@ -8,6 +8,18 @@ namespace coopmap {
 
 namespace {
 
+// Sets every cell of `grid` whose centre lies within `radius` of `p` to `value`.
+template <typename T>
+void fillDisc(Grid<T>& grid, const Eigen::Vector2d& p, double radius, T value) {
+  const MapLimits& lim = grid.limits;
+  const int n = static_cast<int>(std::ceil(radius / lim.resolution));
+  const int cx = lim.cellX(p.x()), cy = lim.cellY(p.y());
+  for (int iy = cy - n; iy <= cy + n; ++iy)
+    for (int ix = cx - n; ix <= cx + n; ++ix)
+      if (lim.contains(ix, iy) && (lim.cellCenter(ix, iy) - p).norm() <= radius)
+        grid.at(ix, iy) = value;
+}
+
 std::vector<Waypoint> routeOf(const std::vector<Eigen::Vector2d>& waypoints) {
   std::vector<Waypoint> route;
   for (size_t i = 1; i < waypoints.size(); ++i) route.push_back({waypoints[i], false, 0.0, 0.0});
@@ -115,25 +127,11 @@ PlanningMap MissionAgent::planningMap(const OccupancyGrid& map, bool allow_unkno
           seen == CellState::kOccupied && map.logOdds(ix, iy) >= config_.firm_log_odds;
       states.at(ix, iy) = visited && !firm ? CellState::kFree : seen;
     }
-  // What the bumpers touched this sortie.
-  const int nb = static_cast<int>(std::ceil(config_.bump_radius / lim.resolution));
-  for (const Eigen::Vector2d& p : bumps_) {
-    const int cx = lim.cellX(p.x()), cy = lim.cellY(p.y());
-    for (int iy = cy - nb; iy <= cy + nb; ++iy)
-      for (int ix = cx - nb; ix <= cx + nb; ++ix)
-        if (lim.contains(ix, iy) && (lim.cellCenter(ix, iy) - p).norm() <= config_.bump_radius)
-          states.at(ix, iy) = CellState::kOccupied;
-  }
-  // Teammates are obstacles while they stand where they are.
-  const double radius = config_.team_radius;
-  const int n = static_cast<int>(std::ceil(radius / lim.resolution));
-  for (const Eigen::Vector2d& p : teammates_) {
-    const int cx = lim.cellX(p.x()), cy = lim.cellY(p.y());
-    for (int iy = cy - n; iy <= cy + n; ++iy)
-      for (int ix = cx - n; ix <= cx + n; ++ix)
-        if (lim.contains(ix, iy) && (lim.cellCenter(ix, iy) - p).norm() <= radius)
-          states.at(ix, iy) = CellState::kOccupied;
-  }
+  // What the bumpers touched this sortie, and teammates while they stand where they are.
+  for (const Eigen::Vector2d& p : bumps_)
+    fillDisc(states, p, config_.bump_radius, CellState::kOccupied);
+  for (const Eigen::Vector2d& p : teammates_)
+    fillDisc(states, p, config_.team_radius, CellState::kOccupied);
   PlanningMapConfig c = config_.planning;
   c.allow_unknown = allow_unknown;
   return PlanningMap(states, c);
@@ -142,13 +140,7 @@ PlanningMap MissionAgent::planningMap(const OccupancyGrid& map, bool allow_unkno
 void MissionAgent::markVisited(const OccupancyGrid& map, const Pose2& odometry) {
   const MapLimits& lim = map.limits();
   if (visited_.cells.empty()) visited_ = GridU8(lim, 0);
-  const double r = config_.planning.robot_radius;
-  const int n = static_cast<int>(std::ceil(r / lim.resolution));
-  const int cx = lim.cellX(odometry.x), cy = lim.cellY(odometry.y);
-  for (int iy = cy - n; iy <= cy + n; ++iy)
-    for (int ix = cx - n; ix <= cx + n; ++ix)
-      if (lim.contains(ix, iy) && (lim.cellCenter(ix, iy) - odometry.translation()).norm() <= r)
-        visited_.at(ix, iy) = 1;
+  fillDisc(visited_, odometry.translation(), config_.planning.robot_radius, uint8_t{1});
 }
 
 void MissionAgent::chooseGoal(double now, const Pose2& odometry, const OccupancyGrid& map) {
