@@ -93,6 +93,30 @@ int main(int argc, char** argv) {
   cmd_run->add_flag("--no-calibration", no_calibration,
                     "With --explore: drive every sortie on raw odometry (default: odometry "
                     "calibrated online with the systematic errors the home-base fixes found)");
+  cmd_run
+      ->add_option("--margin", run.planning_margin,
+                   "With --explore: metres kept clear around the robot's body in planning, "
+                   "room for the estimate's drift")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0));
+  cmd_run
+      ->add_option("--teammate-mask", run.teammate_mask_m,
+                   "With several robots: metres around where a teammate reports itself within "
+                   "which returns are the teammate and are not mapped (0: mapped like the world)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 2.0));
+  std::string closures = "none";
+  cmd_run
+      ->add_option("--closures", closures,
+                   "With --explore: loop closures of each sortie's correction: stretches "
+                   "aligned to the shared map, to the sortie's other half, both, or none")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"both", "shared", "self", "none"}));
+  bool no_coordination = false;
+  cmd_run->add_flag("--no-coordination", no_coordination,
+                    "With --explore and several robots: each explores as if alone (default: "
+                    "frontiers near teammates' goals are worth less, and a robot whose own part "
+                    "is explored goes home to share it)");
   bool quiet = false;
   cmd_run->add_flag("--quiet", quiet, "No progress bar");
 
@@ -456,6 +480,9 @@ int main(int argc, char** argv) {
                     (!routes_flag && coopmap::sim::loadWorld(run.world_file).mission == "explore");
       run.track_shared_map = tracking;
       run.calibrate_odometry = !no_calibration;
+      run.coordinate = !no_coordination;
+      run.cooperation.closures = closures == "both" || closures == "shared";
+      run.cooperation.self_closures = closures == "both" || closures == "self";
       if (robots > 0) run.robots = robots;
       if (!odometry.empty()) run.odometry = odometry;
       if (sensing_rate > 0.0) run.sensing_rate = sensing_rate;

@@ -127,7 +127,9 @@ void writeOutputs(const RunOptions& opt, const sim::World& world, const RunResul
       j.beginObject("mission");
       j.value("phase", r.mission_phase).value("exploration_complete", r.exploration_complete);
       j.value("goals_reached", r.goals_reached).value("goals_failed", r.goals_failed);
-      j.value("safety_stops", r.safety_stops).value("last_event", r.mission_event);
+      j.value("safety_stops", r.safety_stops)
+          .value("early_returns", r.early_returns)
+          .value("last_event", r.mission_event);
       j.value("sorties", r.sorties).value("sorties_fixed", r.sorties_fixed);
       j.value("sorties_posted", r.sorties_posted);
       std::string log;
@@ -219,6 +221,7 @@ RunResult runWorld(const RunOptions& opt) {
         sim.addRobot(spec, {model.description, model.drive, model.odometry, model.cameras});
     RobotRun r;
     r.driver = std::make_unique<SimRobot>(sim, index);
+    r.odo = r.driver->odometry();  // teammates read it before this robot's first step
     r.mapper = std::make_unique<Mapper>(model.description, limits, MapperConfig{});
     r.mapper_description = model.description;
     r.mapper->setRobotName(spec.name);
@@ -226,14 +229,15 @@ RunResult runWorld(const RunOptions& opt) {
     if (opt.explore) {
       MissionConfig mission;
       mission.planning = PlanningMapConfig::forRobot(model.description);
+      mission.planning.margin = opt.planning_margin;
       mission.planner.seed = static_cast<uint32_t>(opt.seed + i);
       mission.budget_m = opt.sortie_budget_m;
       mission.budget_s = opt.sortie_budget_s;
       mission.max_sorties = cooperative ? opt.max_sorties : 1;
       r.mission = std::make_unique<MissionAgent>(spec.start, mission);
       if (cooperative) {
-        r.coop = std::make_unique<HomeBaseCooperation>(spec.name, nominalHomeBase(world),
-                                                       world.home_base.arm_length, &*live);
+        r.coop = std::make_unique<HomeBaseCooperation>(
+            spec.name, nominalHomeBase(world), world.home_base.arm_length, &*live, opt.cooperation);
         r.calibrate = opt.calibrate_odometry;
       }
     }
@@ -325,6 +329,13 @@ RunResult runWorld(const RunOptions& opt) {
           r.turn_steps = r.straight_steps = 0;
           r.raw.push_back(frame->odometry);
           if (r.calibrate) frame->odometry = r.calibration.calibrate(frame->odometry);
+          if (runs.size() > 1 && opt.teammate_mask_m > 0.0) {
+            // Teammates report where they are: what this robot sees of them is not mapped.
+            std::vector<Eigen::Vector2d> mates;
+            for (const RobotRun& o : runs)
+              if (&o != &r) mates.push_back(o.mapper->estimate(o.odo).translation());
+            r.mapper->setTeammates(std::move(mates), opt.teammate_mask_m);
+          }
           r.latest = &r.mapper->process(*frame, segment);
           if (r.tracker.hasMap() && !r.reapproaching &&
               (r.mission->phase() == MissionPhase::kExplore ||
@@ -352,10 +363,16 @@ RunResult runWorld(const RunOptions& opt) {
       const Pose2 steer = opt.steer_by_truth ? sim.truePose(i) : r.result.estimate.back().pose;
       if (r.mission && runs.size() > 1) {
         // Teammates report where they believe they are (their estimates share the map frame).
-        std::vector<Eigen::Vector2d> others;
-        for (const RobotRun& o : runs)
-          if (&o != &r) others.push_back(o.mapper->estimate(o.odo).translation());
+        std::vector<Eigen::Vector2d> others, goals;
+        for (const RobotRun& o : runs) {
+          if (&o == &r) continue;
+          others.push_back(o.mapper->estimate(o.odo).translation());
+          if (o.mission)
+            if (const std::optional<Eigen::Vector2d> g = o.mission->explorationGoal())
+              goals.push_back(*g);
+        }
         r.mission->setTeammates(std::move(others), &r == &runs.front());
+        if (opt.coordinate) r.mission->setTeammateGoals(goals);
       }
       const MotionCommand cmd = r.mission ? r.mission->update(t, steer, r.mapper->grid(), r.latest,
                                                               r.driver->status().bumped)
@@ -431,6 +448,7 @@ RunResult runWorld(const RunOptions& opt) {
       r.result.goals_reached = r.mission->goalsReached();
       r.result.goals_failed = r.mission->goalsFailed();
       r.result.safety_stops = r.mission->safetyStops();
+      r.result.early_returns = r.mission->earlyReturns();
       r.result.mission_event = r.mission->lastEvent();
     }
     r.result.traverse = r.mapper->traverse();

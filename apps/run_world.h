@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/agent/cooperation.h"
 #include "core/correction/traverse_log.h"
 #include "core/io/tum.h"
 #include "core/mapping/map_metrics.h"
@@ -55,6 +56,18 @@ struct RunOptions {
   // Calibrate the odometry online from each sortie's fitted systematic errors
   // (core/correction/odometry_calibration.h); false: raw odometry every sortie.
   bool calibrate_odometry = true;
+  // With more than one robot: frontiers near teammates' goals are worth less, and a robot
+  // whose own part is explored goes home to share it (MissionConfig::claimed_return_factor);
+  // false: each robot explores as if alone.
+  bool coordinate = true;
+  // m kept clear around the robot's body when exploring robots plan (on top of its radius;
+  // PlanningMapConfig::margin): room for the estimate's drift between home-base fixes.
+  double planning_margin = 0.05;
+  // m: returns this close to where a teammate reports itself are the teammate, and are not
+  // mapped (Mapper::setTeammates); 0: teammates are mapped like the world.
+  double teammate_mask_m = 0.5;
+  // How each sortie is localized, corrected and checked before it is shared.
+  CooperationConfig cooperation;
   double timeline_period_s = 10.0;     // s between samples of coverage and error over time
   std::optional<double> sensing_rate;  // Hz; overrides the world's
   bool progress = false;               // progress bar on stderr
@@ -96,6 +109,7 @@ struct RobotRunResult {
   std::string mission_phase;  // where the mission stopped ("done" when it came home)
   bool exploration_complete = false;
   int goals_reached = 0, goals_failed = 0, safety_stops = 0;
+  int early_returns = 0;                // sorties ended because the frontiers left were teammates'
   std::string mission_event;            // the mission's last event, for people
   int sorties = 0;                      // sorties ended at the home base
   int sorties_fixed = 0;                // of them, localized there

@@ -34,7 +34,8 @@ class Mapper {
 
   // Runs one sensing cycle on a frame; the map is updated at the frame's odometry pose and
   // the radial map appended to the traverse log with the motion segment under way.
-  // Returns the radial map it inserted.
+  // Returns the radial map as seen, teammates included (for safety: a teammate close ahead
+  // must stop the robot, though it is not mapped).
   const RadialMap& process(const TrinocularFrame& frame,
                            MotionSegment segment = MotionSegment::kStop);
 
@@ -54,6 +55,15 @@ class Mapper {
   // odometry chain a sortie is corrected on. (The caller may hand the mapper calibrated
   // odometry; naive sharing keeps the encoders' own.)
   const std::vector<Pose2>& rawOdometry() const { return raw_odometry_; }
+  // Where the teammates are (map frame, as they report themselves), for the next frames:
+  // a return within `radius` of one is the teammate, not the world, and is left out of the
+  // traverse log (what is posted to the shared map, where it would be a phantom obstacle, and
+  // what the home-base fixes are made from, where it would be a moving one). The logged
+  // column stays free up to the teammate's edge. The robot's own map, which it drives by,
+  // keeps the teammate where it is seen (a report may be off by the teammate's drift).
+  // An empty list or radius 0: nothing masked.
+  void setTeammates(std::vector<Eigen::Vector2d> positions, double radius);
+  int maskedReturns() const { return masked_; }  // returns left out so far
   const cv::Mat& lastDisparity() const { return disparity_; }
   const TraverseLog& traverse() const { return traverse_; }
   void setRobotName(const std::string& name) { traverse_.robot = name; }
@@ -71,6 +81,10 @@ class Mapper {
   std::vector<Pose2> raw_odometry_;
   Pose2 frame_;
   bool framed_ = false;
+  RadialMap last_scan_;  // unmasked
+  std::vector<Eigen::Vector2d> teammates_;
+  double teammate_radius_ = 0.0;
+  int masked_ = 0;
   MapperTiming timing_;
 };
 

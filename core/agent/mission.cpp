@@ -49,6 +49,17 @@ void MissionConfig::validate() const {
   positive("team_radius", team_radius);
   positive("look_from_m", look_from_m);
   positive("bump_radius", bump_radius);
+  if (!(bump_width >= 0.0))
+    throw std::invalid_argument("mission config: field 'bump_width': expected a number >= 0, got " +
+                                std::to_string(bump_width));
+  if (!(claimed_return_factor >= 0.0 && claimed_return_factor <= 1.0))
+    throw std::invalid_argument(
+        "mission config: field 'claimed_return_factor': expected a number in [0, 1], got " +
+        std::to_string(claimed_return_factor));
+  if (!(min_sortie_m >= 0.0))
+    throw std::invalid_argument(
+        "mission config: field 'min_sortie_m': expected a number >= 0, got " +
+        std::to_string(min_sortie_m));
   if (firm_log_odds < 1)
     throw std::invalid_argument("mission config: field 'firm_log_odds': expected at least 1, got " +
                                 std::to_string(firm_log_odds));
@@ -143,39 +154,60 @@ void MissionAgent::markVisited(const OccupancyGrid& map, const Pose2& odometry) 
   fillDisc(visited_, odometry.translation(), config_.planning.robot_radius, uint8_t{1});
 }
 
+std::optional<Eigen::Vector2d> MissionAgent::nearestFreeCell(const PlanningMap& planning,
+                                                             const Pose2& odometry) const {
+  const MapLimits& lim = planning.limits();
+  const int n = static_cast<int>(std::ceil(config_.escape_radius / lim.resolution));
+  const int cx = lim.cellX(odometry.x), cy = lim.cellY(odometry.y);
+  double best = 1e300;
+  std::optional<Eigen::Vector2d> to;
+  for (int iy = cy - n; iy <= cy + n; ++iy)
+    for (int ix = cx - n; ix <= cx + n; ++ix) {
+      const Eigen::Vector2d c = lim.cellCenter(ix, iy);
+      const double d = (c - odometry.translation()).norm();
+      if (d < best && d <= config_.escape_radius && planning.free(ix, iy) &&
+          planning.segmentFree(c, c)) {
+        best = d;
+        to = c;
+      }
+    }
+  return to;
+}
+
 void MissionAgent::chooseGoal(double now, const Pose2& odometry, const OccupancyGrid& map) {
   const PlanningMap planning = planningMap(map, false);
   if (!planning.freeAt(odometry.translation())) {
     // Something seen too close (a stereo mismatch, a person passing) leaves the robot on a
     // cell the planner will not start from: step to the nearest free one first.
-    const MapLimits& lim = map.limits();
-    const int n = static_cast<int>(std::ceil(config_.escape_radius / lim.resolution));
-    const int cx = lim.cellX(odometry.x), cy = lim.cellY(odometry.y);
-    double best = 1e300;
-    Eigen::Vector2d to(0.0, 0.0);
-    for (int iy = cy - n; iy <= cy + n; ++iy)
-      for (int ix = cx - n; ix <= cx + n; ++ix) {
-        const Eigen::Vector2d c = lim.cellCenter(ix, iy);
-        const double d = (c - odometry.translation()).norm();
-        if (d < best && d <= config_.escape_radius && planning.free(ix, iy) &&
-            planning.segmentFree(c, c)) {
-          best = d;
-          to = c;
-        }
-      }
-    if (best < 1e300 && !escaping_) {
+    const std::optional<Eigen::Vector2d> to = nearestFreeCell(planning, odometry);
+    if (to && !escaping_) {
       escaping_ = true;
       has_goal_ = false;
-      startRoute({{to, false, 0.0, 0.0}}, now);
+      startRoute({{*to, false, 0.0, 0.0}}, now);
       last_event_ = "stepping off a blocked cell";
       return;
     }
   }
   escaping_ = false;
-  const ExploreStep step = explorer_.next(map, planning, odometry);
+  const ExploreStep step = explorer_.next(map, planning, odometry, claims_);
+  if (step.status == ExploreStatus::kBlocked) {
+    // Stepping off did not help (or nothing free is near): nothing can be planned from
+    // here, which says nothing about what is left to explore. Home, and try again from there.
+    last_event_ = "on a blocked cell: going home";
+    goHome(now, odometry, map);
+    return;
+  }
   if (step.status != ExploreStatus::kGoal) {
     exploration_complete_ = true;
     last_event_ = "exploration complete: " + step.reason;
+    goHome(now, odometry, map);
+    return;
+  }
+  if (config_.max_sorties > 1 && step.claim_factor < config_.claimed_return_factor &&
+      travelled_ >= config_.min_sortie_m) {
+    // What is left is near where teammates explore: share this part now.
+    ++early_returns_;
+    last_event_ = "own part explored: the frontiers left are teammates'";
     goHome(now, odometry, map);
     return;
   }
@@ -193,10 +225,19 @@ void MissionAgent::chooseGoal(double now, const Pose2& odometry, const Occupancy
 void MissionAgent::goHome(double now, const Pose2& odometry, const OccupancyGrid& map) {
   phase_ = MissionPhase::kReturn;
   has_goal_ = false;
-  PlanResult plan = planner_.plan(planningMap(map, false), odometry, target_.translation());
-  if (!plan.solved()) plan = planner_.plan(planningMap(map, true), odometry, target_.translation());
+  // On a blocked cell (backed off from a bump into what it has just drawn): step off to the
+  // nearest free cell first, and plan from there.
+  const PlanningMap planning = planningMap(map, false);
+  Pose2 from = odometry;
+  const bool step_off = !planning.freeAt(odometry.translation());
+  if (step_off)
+    if (const std::optional<Eigen::Vector2d> to = nearestFreeCell(planning, odometry))
+      from = Pose2(to->x(), to->y(), odometry.theta);
+  PlanResult plan = planner_.plan(planning, from, target_.translation());
+  if (!plan.solved()) plan = planner_.plan(planningMap(map, true), from, target_.translation());
   if (plan.solved()) {
     path_ = plan.path;
+    if (step_off) path_.waypoints.insert(path_.waypoints.begin(), odometry.translation());
     startRoute(routeOf(path_.waypoints), now);
   } else {
     path_ = PlannedPath{};
@@ -217,7 +258,9 @@ void MissionAgent::continueAfterFix(double now) {
   sortie_start_ = now;
   travelled_ = 0.0;
   sortie_bumps_ = 0;
-  bumps_.clear();  // the estimate's frame changes with the fix
+  bumps_.clear();              // the estimate's frame changes with the fix
+  claims_.clear();             // what teammates posted is in the imported map now
+  explorer_.clearBlacklist();  // the goals failed in the old frame, on the old map
   pose_jumped_ = true;
   has_goal_ = false;
   follower_.reset();
@@ -236,11 +279,47 @@ void MissionAgent::setTeammates(std::vector<Eigen::Vector2d> positions, bool pri
   priority_ = priority;
 }
 
+void MissionAgent::setTeammateGoals(const std::vector<Eigen::Vector2d>& goals) {
+  for (const Eigen::Vector2d& g : goals) {
+    const bool known = std::any_of(claims_.begin(), claims_.end(), [&](const Eigen::Vector2d& c) {
+      return (c - g).norm() < config_.frontiers.blacklist_radius;
+    });
+    if (!known) claims_.push_back(g);
+  }
+}
+
+std::optional<Eigen::Vector2d> MissionAgent::explorationGoal() const {
+  if (phase_ == MissionPhase::kExplore && has_goal_) return goal_;
+  return std::nullopt;
+}
+
 bool MissionAgent::teammateAhead(const Pose2& pose) const {
+  // The way ahead: the rest of the path being followed (or straight to the target).
+  std::vector<Eigen::Vector2d> way{pose.translation()};
+  if (follower_ && path_.waypoints.size() >= 2) {
+    for (size_t k = std::min(follower_->nextWaypoint() + 1, path_.waypoints.size() - 1);
+         k < path_.waypoints.size(); ++k)
+      way.push_back(path_.waypoints[k]);
+  } else {
+    way.push_back(target_.translation());
+  }
+  // A teammate stops this robot only where the way passes it closer than the planning map's
+  // disc allows: once planned around a teammate standing still, the robot drives on.
+  const double clear = 0.9 * (config_.team_radius + config_.planning.robot_radius);
+  auto nearWay = [&](const Eigen::Vector2d& p) {
+    for (size_t k = 0; k + 1 < way.size(); ++k) {
+      const Eigen::Vector2d a = way[k], ab = way[k + 1] - a;
+      const double t =
+          ab.squaredNorm() > 0.0 ? std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
+      if ((a + t * ab - p).norm() < clear) return true;
+    }
+    return false;
+  };
   for (const Eigen::Vector2d& p : teammates_) {
     const Eigen::Vector2d to = p - pose.translation();
     if (to.norm() < config_.team_distance &&
-        std::abs(wrapAngle(std::atan2(to.y(), to.x()) - pose.theta)) < config_.team_half_angle)
+        std::abs(wrapAngle(std::atan2(to.y(), to.x()) - pose.theta)) < config_.team_half_angle &&
+        nearWay(p))
       return true;
   }
   return false;
@@ -278,7 +357,12 @@ MotionCommand MissionAgent::update(double now, const Pose2& odometry, const Occu
     // an obstacle where the robot touched it, in the frame of its estimate like its map.
     if (last_command_.linear != 0.0) {
       const double edge = config_.planning.robot_radius + 0.5 * config_.bump_radius;
-      bumps_.push_back(odometry * Eigen::Vector2d(last_command_.linear > 0.0 ? edge : -edge, 0.0));
+      const double x = last_command_.linear > 0.0 ? edge : -edge;
+      const int n = static_cast<int>(std::ceil(0.5 * config_.bump_width / config_.bump_radius));
+      for (int k = -n; k <= n; ++k)
+        bumps_.push_back(odometry * Eigen::Vector2d(x, std::clamp(k * config_.bump_radius,
+                                                                  -0.5 * config_.bump_width,
+                                                                  0.5 * config_.bump_width)));
     }
     if (phase_ == MissionPhase::kExplore) {
       if (has_goal_) explorer_.blacklist(goal_);

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,9 @@ struct MissionConfig {
   double backoff_s = 1.5;            // s of backing off at 0.1 m/s after a bump
   double escape_radius = 0.6;        // m: a robot on a blocked cell steps to a free one this near
   double bump_radius = 0.1;          // m: what a bump shows is drawn as an obstacle disc this big
+  // m: ... repeated across the robot's heading over this width (a bumper does not say how far
+  // an edge goes on either side; a table edge the robot met head-on goes on).
+  double bump_width = 0.5;
   // Cells the robot has driven over count as free in its planning map unless the map holds
   // them occupied at least this firmly (log-odds in hundredths, OccupancyConfig).
   int firm_log_odds = 400;
@@ -54,6 +58,13 @@ struct MissionConfig {
   // odometry is lost, and going on would only push into more things).
   int max_sortie_bumps = 6;
   double look_from_m = 2.0;
+  // Coordination: teammates' frontier goals (setTeammateGoals) make frontiers near them worth
+  // less (FrontierConfig::claim_radius). With sorties, when the best frontier left is claimed
+  // this much (its factor below claimed_return_factor) after at least min_sortie_m driven, this
+  // robot's part is explored: it goes home to share it rather than go over a teammate's part.
+  // 0 turns the early return off.
+  double claimed_return_factor = 0.5;
+  double min_sortie_m = 3.0;
   FrontierConfig frontiers;
   PlannerConfig planner;
   PlanningMapConfig planning;
@@ -90,6 +101,13 @@ class MissionAgent {
   // the right of way over them (e.g. the lower index). Call before update.
   void setTeammates(std::vector<Eigen::Vector2d> positions, bool priority);
   int teamStops() const { return team_stops_; }
+  // The frontier goals teammates are driving to now (map frame). They are remembered as
+  // claimed until the robot imports the shared map (continueAfterFix).
+  void setTeammateGoals(const std::vector<Eigen::Vector2d>& goals);
+  const std::vector<Eigen::Vector2d>& claimed() const { return claims_; }
+  // The frontier goal this robot drives to, if it is exploring towards one.
+  std::optional<Eigen::Vector2d> explorationGoal() const;
+  int earlyReturns() const { return early_returns_; }
   MissionPhase phase() const { return phase_; }
   bool done() const { return phase_ == MissionPhase::kDone; }
   bool explorationComplete() const { return exploration_complete_; }
@@ -105,6 +123,9 @@ class MissionAgent {
   void markVisited(const OccupancyGrid& map, const Pose2& odometry);
   bool obstacleAhead(const RadialMap& scan) const;
   void chooseGoal(double now, const Pose2& odometry, const OccupancyGrid& map);
+  // The free cell nearest the robot within escape_radius, if any.
+  std::optional<Eigen::Vector2d> nearestFreeCell(const PlanningMap& planning,
+                                                 const Pose2& odometry) const;
   void goHome(double now, const Pose2& odometry, const OccupancyGrid& map);
 
   Pose2 home_;
@@ -129,6 +150,8 @@ class MissionAgent {
   int return_bumps_ = 0;
   int sortie_bumps_ = 0;
   std::vector<Eigen::Vector2d> teammates_;
+  std::vector<Eigen::Vector2d> claims_;  // teammates' goals since the last import
+  int early_returns_ = 0;
   bool priority_ = false;
   double team_wait_until_ = -1.0;  // waiting for a teammate ahead until then
   int team_stops_ = 0;

@@ -18,6 +18,7 @@ void FrontierConfig::validate() const {
   if (!(cost_weight >= 0.0)) bad("cost_weight", "a number >= 0", cost_weight);
   if (!(blacklist_radius >= 0.0)) bad("blacklist_radius", "a number >= 0", blacklist_radius);
   if (max_plans < 1) bad("max_plans", "an integer >= 1", max_plans);
+  if (!(claim_radius >= 0.0)) bad("claim_radius", "a number >= 0", claim_radius);
 }
 
 std::vector<Frontier> findFrontiers(const OccupancyGrid& grid, const PlanningMap& planning,
@@ -106,9 +107,24 @@ bool FrontierExplorer::blacklisted(const Eigen::Vector2d& goal) const {
   return false;
 }
 
+double FrontierExplorer::claimFactor(const Eigen::Vector2d& goal,
+                                     const std::vector<Eigen::Vector2d>& claimed) const {
+  double factor = 1.0;
+  if (config_.claim_radius <= 0.0) return factor;
+  for (const Eigen::Vector2d& c : claimed)
+    factor = std::min(factor, (c - goal).norm() / config_.claim_radius);
+  return factor;
+}
+
 ExploreStep FrontierExplorer::next(const OccupancyGrid& grid, const PlanningMap& planning,
-                                   const Pose2& robot) {
+                                   const Pose2& robot,
+                                   const std::vector<Eigen::Vector2d>& claimed) {
   ExploreStep step;
+  if (!planning.freeAt(robot.translation())) {
+    step.status = ExploreStatus::kBlocked;
+    step.reason = "the robot stands on a blocked cell";
+    return step;
+  }
   const std::vector<Frontier> frontiers =
       findFrontiers(grid, planning, robot.translation(), config_);
   step.frontiers = static_cast<int>(frontiers.size());
@@ -116,12 +132,14 @@ ExploreStep FrontierExplorer::next(const OccupancyGrid& grid, const PlanningMap&
   struct Candidate {
     const Frontier* f;
     double utility;
+    double claim;
   };
   std::vector<Candidate> candidates;
   for (const Frontier& f : frontiers) {
     if (!f.has_goal || f.gain == 0 || blacklisted(f.goal)) continue;
     const double d = (f.goal - robot.translation()).norm();
-    candidates.push_back({&f, f.gain / (1.0 + config_.cost_weight * d)});
+    const double claim = claimFactor(f.goal, claimed);
+    candidates.push_back({&f, claim * f.gain / (1.0 + config_.cost_weight * d), claim});
   }
   if (candidates.empty()) {
     step.reason = frontiers.empty() ? "no frontier left"
@@ -135,15 +153,17 @@ ExploreStep FrontierExplorer::next(const OccupancyGrid& grid, const PlanningMap&
   double best = -1.0;
   for (size_t k = 0; k < candidates.size() && static_cast<int>(k) < config_.max_plans; ++k) {
     const Frontier& f = *candidates[k].f;
+    const double claim = candidates[k].claim;
     PlanResult plan = planner_.plan(planning, robot, f.goal);
     if (!plan.solved()) {
       blacklist(f.goal);  // unreachable now; not fatal
       continue;
     }
-    const double utility = f.gain / (1.0 + config_.cost_weight * plan.path.length());
+    const double utility = claim * f.gain / (1.0 + config_.cost_weight * plan.path.length());
     if (utility > best) {
       best = utility;
       step.status = ExploreStatus::kGoal;
+      step.claim_factor = claim;
       step.frontier = f;
       step.plan = std::move(plan);
     }

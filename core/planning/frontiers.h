@@ -24,7 +24,11 @@ struct FrontierConfig {
   double cost_weight = 1.0;         // utility = gain cells / (1 + cost_weight * path metres)
   double blacklist_radius = 0.5;    // m: goals this close to a failed one are skipped
   int max_plans = 5;                // frontiers (best by straight-line utility) planned to
-  void validate() const;            // throws std::invalid_argument naming the field
+  // Coordination (Burgard et al., "Coordinated multi-robot exploration", 2005): a frontier
+  // whose goal lies within claim_radius of a point a teammate has claimed (its goals) is
+  // worth less by the chance that the teammate sees it: utility * distance / claim_radius.
+  double claim_radius = 2.5;  // m; 0 turns coordination off
+  void validate() const;      // throws std::invalid_argument naming the field
 };
 
 struct Frontier {
@@ -41,14 +45,17 @@ struct Frontier {
 std::vector<Frontier> findFrontiers(const OccupancyGrid& grid, const PlanningMap& planning,
                                     const Eigen::Vector2d& robot, const FrontierConfig& config);
 
-enum class ExploreStatus { kGoal, kDone };
+// kBlocked: the robot stands on a cell the planning map holds blocked, so nothing can be
+// planned from where it is (which says nothing about what is left to explore).
+enum class ExploreStatus { kGoal, kDone, kBlocked };
 
 struct ExploreStep {
   ExploreStatus status = ExploreStatus::kDone;
-  Frontier frontier;   // the chosen one
-  PlanResult plan;     // the path to its goal
-  int frontiers = 0;   // found this time (with or without a reachable goal)
-  std::string reason;  // why done
+  Frontier frontier;          // the chosen one
+  PlanResult plan;            // the path to its goal
+  int frontiers = 0;          // found this time (with or without a reachable goal)
+  double claim_factor = 1.0;  // of the chosen one: 1 unclaimed, near 0 a teammate's goal
+  std::string reason;         // why done
 };
 
 // Chooses where to explore next; remembers failed goals.
@@ -57,10 +64,17 @@ class FrontierExplorer {
   FrontierExplorer(const FrontierConfig& frontiers, const PlannerConfig& planner);
 
   // The best frontier to go to from `robot` on `grid` (planning map built with the
-  // robot's radius), with its plan; kDone when no reachable frontier is left.
-  ExploreStep next(const OccupancyGrid& grid, const PlanningMap& planning, const Pose2& robot);
+  // robot's radius), with its plan; kDone when no reachable frontier is left. `claimed`:
+  // where teammates explore (map frame), see FrontierConfig::claim_radius.
+  ExploreStep next(const OccupancyGrid& grid, const PlanningMap& planning, const Pose2& robot,
+                   const std::vector<Eigen::Vector2d>& claimed = {});
+  // The factor by which `claimed` lowers the utility of a frontier whose goal is `goal`.
+  double claimFactor(const Eigen::Vector2d& goal,
+                     const std::vector<Eigen::Vector2d>& claimed) const;
   // The robot could not reach this goal: never choose it (or a goal near it) again.
   void blacklist(const Eigen::Vector2d& goal) { blacklist_.push_back(goal); }
+  // Forgets the failed goals (the map, or the frame it is in, changed).
+  void clearBlacklist() { blacklist_.clear(); }
   const std::vector<Eigen::Vector2d>& blacklisted() const { return blacklist_; }
 
  private:

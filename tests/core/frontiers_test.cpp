@@ -68,12 +68,51 @@ TEST(FrontiersTest, ExplorerPlansToTheBestFrontierAndBlacklistsFailures) {
   EXPECT_EQ(none.reason, "2 frontiers, none with a reachable goal not blacklisted");
 }
 
+TEST(FrontiersTest, AFrontierATeammateClaimedIsLeftToIt) {
+  // The near doorway is the best alone; a teammate driving to it makes the far one best, and
+  // the step says how much the chosen frontier is claimed.
+  const OccupancyGrid g = roomWithDoors({{0.4, 1.2}, {2.8, 3.6}});
+  const PlanningMap p = planningOf(g);
+  FrontierExplorer explorer({}, PlannerConfig{});
+  const Pose2 robot(1.5, 0.8, 0.0);
+  const ExploreStep alone = explorer.next(g, p, robot);
+  ASSERT_EQ(alone.status, ExploreStatus::kGoal);
+  EXPECT_LT(alone.frontier.centroid.y(), 2.0);
+  EXPECT_DOUBLE_EQ(alone.claim_factor, 1.0);
+  const ExploreStep shared = explorer.next(g, p, robot, {alone.frontier.goal});
+  ASSERT_EQ(shared.status, ExploreStatus::kGoal);
+  EXPECT_GT(shared.frontier.centroid.y(), 2.0);
+  EXPECT_GT(shared.claim_factor, 0.9);  // the doorways' goals are ~2.4 m apart
+  // Both claimed: the less claimed one is chosen, and its factor says it is a teammate's.
+  const ExploreStep both = explorer.next(g, p, robot, {alone.frontier.goal, shared.frontier.goal});
+  ASSERT_EQ(both.status, ExploreStatus::kGoal);
+  EXPECT_LT(both.claim_factor, 0.1);
+  // Coordination off: claims change nothing.
+  FrontierConfig off;
+  off.claim_radius = 0.0;
+  FrontierExplorer independent(off, PlannerConfig{});
+  const ExploreStep ignored = independent.next(g, p, robot, {alone.frontier.goal});
+  EXPECT_LT(ignored.frontier.centroid.y(), 2.0);
+  EXPECT_DOUBLE_EQ(ignored.claim_factor, 1.0);
+}
+
 TEST(FrontiersTest, AClosedRoomIsExplored) {
   const OccupancyGrid g = roomWithDoors({});
   FrontierExplorer explorer({}, PlannerConfig{});
   const ExploreStep step = explorer.next(g, planningOf(g), Pose2(1.5, 2.0, 0.0));
   EXPECT_EQ(step.status, ExploreStatus::kDone);
   EXPECT_EQ(step.reason, "no frontier left");
+}
+
+TEST(FrontiersTest, ARobotOnABlockedCellIsBlockedNotDone) {
+  // Against the west wall (inside its inflation) nothing can be planned: that is not the
+  // end of exploration, the doorway is still there.
+  const OccupancyGrid g = roomWithDoors({{1.5, 2.5}});
+  FrontierExplorer explorer({}, PlannerConfig{});
+  const ExploreStep step = explorer.next(g, planningOf(g), Pose2(0.15, 2.0, 0.0));
+  EXPECT_EQ(step.status, ExploreStatus::kBlocked);
+  EXPECT_EQ(step.reason, "the robot stands on a blocked cell");
+  EXPECT_EQ(explorer.next(g, planningOf(g), Pose2(1.0, 2.0, 0.0)).status, ExploreStatus::kGoal);
 }
 
 TEST(FrontiersTest, ADoorwayTooNarrowForTheRobotHasNoGoalBeyondIt) {

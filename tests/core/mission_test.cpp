@@ -2,8 +2,10 @@
 // every bump backs the robot off; bumped max_sortie_bumps times in a sortie, the robot
 // stops for good (its wheels slipped, its odometry cannot be trusted).
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -72,6 +74,53 @@ TEST(MissionTest, StopsForGoodAfterTooManyBumpsInASortie) {
   EXPECT_EQ(mission.safetyStops(), 2);
 }
 
+TEST(MissionTest, GoesHomeToShareWhenTheFrontiersLeftAreTeammates) {
+  // A robot with sorties explores; once it has driven min_sortie_m, a teammate claims every
+  // frontier (its goals all over the map): the robot goes home to share its part, not
+  // before, and forgets the claims when it has imported the shared map.
+  const Pose2 home(2.0, 3.0, 0.0);
+  const OccupancyGrid map = lookedAround(Pose2(1.0, 3.0, 0.0));
+  MissionConfig c;
+  c.look_wait_s = 0.5;
+  c.look_turn_rate = 1.5;
+  c.max_sorties = 2;
+  c.min_sortie_m = 1.0;
+  c.planner.seed = 3;
+  MissionAgent mission(home, c);
+  std::vector<Eigen::Vector2d> everywhere;
+  for (double x = 0.25; x < 8.0; x += 0.5)
+    for (double y = 0.25; y < 6.0; y += 0.5) everywhere.push_back({x, y});
+  Pose2 pose = home;
+  const double dt = 0.05;
+  double driven = 0.0;
+  bool claimed = false;
+  for (int step = 0; step < 20000 && mission.phase() != MissionPhase::kAtHome; ++step) {
+    const MotionCommand cmd = mission.update(step * dt, pose, map, nullptr);
+    if (mission.phase() == MissionPhase::kExplore) {
+      const std::optional<Eigen::Vector2d> goal = mission.explorationGoal();
+      if (driven < c.min_sortie_m) {
+        // Its own goal claimed by a teammate changes nothing yet: it has not driven enough.
+        if (goal) mission.setTeammateGoals({*goal});
+        EXPECT_EQ(mission.earlyReturns(), 0);
+      } else if (!claimed) {
+        mission.setTeammateGoals(everywhere);
+        claimed = true;
+      }
+    }
+    driven += std::abs(cmd.linear) * dt;
+    pose = pose * Pose2(cmd.linear * dt, 0.0, cmd.angular * dt);
+  }
+  ASSERT_EQ(mission.phase(), MissionPhase::kAtHome) << mission.lastEvent();
+  EXPECT_TRUE(claimed) << mission.lastEvent();
+  EXPECT_EQ(mission.earlyReturns(), 1);
+  EXPECT_FALSE(mission.explorationComplete());
+  EXPECT_LT((pose.translation() - home.translation()).norm(), 0.3);
+  EXPECT_FALSE(mission.claimed().empty());
+  mission.continueAfterFix(1000.0);
+  EXPECT_EQ(mission.phase(), MissionPhase::kExplore);
+  EXPECT_TRUE(mission.claimed().empty());
+}
+
 TEST(MissionTest, BadBumpSettingsNameTheField) {
   MissionConfig c;
   c.max_sortie_bumps = 0;
@@ -83,6 +132,9 @@ TEST(MissionTest, BadBumpSettingsNameTheField) {
   }
   c = MissionConfig{};
   c.bump_radius = 0.0;
+  EXPECT_THROW(c.validate(), std::invalid_argument);
+  c = MissionConfig{};
+  c.claimed_return_factor = 1.5;
   EXPECT_THROW(c.validate(), std::invalid_argument);
 }
 

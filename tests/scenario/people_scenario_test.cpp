@@ -1,6 +1,9 @@
 // Scenario: a person walks across in front of a robot that stands still. The person must
 // show in the robot's radial maps while crossing, and leave no obstacle in the map once
 // the cells are seen free again; a person walking into a robot is a counted contact.
+#include <cmath>
+#include <string>
+
 #include <gtest/gtest.h>
 
 #include "apps/run_world.h"
@@ -59,6 +62,58 @@ TEST(PeopleScenarioTest, PersonCrossingShowsThenLeavesNoObstacle) {
     }
   EXPECT_GT(seen, 400);
   EXPECT_EQ(occupied, 0);
+}
+
+TEST(PeopleScenarioTest, ATeammateIsNotLoggedWhereItReportsItself) {
+  // r stands facing a teammate 2 m ahead that stands still too, the wall beyond. Unmasked,
+  // the teammate is an obstacle in what r logs (and would post); masked where it reports
+  // itself (perfect odometry: where it is), it is not, and the wall beside it still is. r's
+  // own map, which it drives by, shows the teammate either way.
+  const std::string world = test_support::writeTestWorld(
+      "teammate", R"(floor: {min: [-1, -4], max: [4, 4], texture: carpet}
+walls:
+  - {from: [3.8, -4], to: [3.8, 4], thickness: 0.1, height: 2.5, texture: poster}
+home_base:
+  corners:
+    - {position: [0, 3.5], heading_deg: 0}
+    - {position: [1, 3.5], heading_deg: 0}
+  texture: poster
+)",
+      "",
+      "  - name: mate\n    model: " + std::string(COOPMAP_SOURCE_DIR) +
+          "/robots/b14/b14.yaml\n    start: {position: [2.0, 0.0], heading_deg: 0}\n");
+  for (const double mask : {0.0, 0.5}) {
+    RunOptions o;
+    o.world_file = world;
+    o.robots = 2;
+    o.duration = 4.0;
+    o.odometry = "perfect";
+    o.teammate_mask_m = mask;
+    const RunResult r = runWorld(o);
+    ASSERT_EQ(r.robots.size(), 2u);
+    ASSERT_TRUE(r.robots[0].grid.has_value());
+    auto count = [](const OccupancyGrid& map, int& on_mate, int& on_wall) {
+      const MapLimits& lim = map.limits();
+      on_mate = on_wall = 0;
+      for (int iy = 0; iy < lim.height; ++iy)
+        for (int ix = 0; ix < lim.width; ++ix) {
+          if (map.state(ix, iy) != CellState::kOccupied) continue;
+          const Eigen::Vector2d c = lim.cellCenter(ix, iy);
+          on_mate += (c - Eigen::Vector2d(2.0, 0.0)).norm() < 0.35;
+          on_wall += std::abs(c.x() - 3.8) < 0.15 && std::abs(c.y()) > 0.6;
+        }
+    };
+    int on_mate = 0, on_wall = 0, own_mate = 0, own_wall = 0;
+    count(localMap(r.robots[0].traverse, r.robots[0].grid->limits()), on_mate, on_wall);
+    count(*r.robots[0].grid, own_mate, own_wall);
+    EXPECT_GE(own_mate, 5) << "mask " << mask << ": r drives by what it sees";
+    if (mask == 0.0) {
+      EXPECT_GE(on_mate, 5) << "logged like the world";
+    } else {
+      EXPECT_EQ(on_mate, 0);
+    }
+    EXPECT_GE(on_wall, 20) << "mask " << mask;
+  }
 }
 
 TEST(PeopleScenarioTest, PersonWalkingIntoTheRobotIsAContact) {

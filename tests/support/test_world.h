@@ -10,9 +10,11 @@ namespace coopmap::test_support {
 
 // Writes a world named `name` with the common textures (carpet, poster, wood), the given
 // YAML body (floor, walls, doors, home_base, people ...) and one robot "r" at the origin
-// with the given route (YAML flow list, may be empty). Returns the file's path.
+// with the given route (YAML flow list, may be empty), then `more_robots` (YAML list items
+// of the robots key, may be empty). Returns the file's path.
 inline std::string writeTestWorld(const std::string& name, const std::string& body,
-                                  const std::string& route = "") {
+                                  const std::string& route = "",
+                                  const std::string& more_robots = "") {
   const std::string path =
       (std::filesystem::temp_directory_path() / ("coopmap_test_" + name + ".yaml")).string();
   std::ofstream(path) << "name: " << name << R"(
@@ -25,7 +27,7 @@ robots:
   - name: r
     model: )" << COOPMAP_SOURCE_DIR
                       << "/robots/b14/b14.yaml\n    start: {position: [0, 0], heading_deg: 0}\n"
-                      << (route.empty() ? "" : "    route: [" + route + "]\n");
+                      << (route.empty() ? "" : "    route: [" + route + "]\n") << more_robots;
   return path;
 }
 
