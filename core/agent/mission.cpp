@@ -47,6 +47,7 @@ void MissionConfig::validate() const {
   positive("team_half_angle", team_half_angle);
   positive("team_wait_s", team_wait_s);
   positive("team_radius", team_radius);
+  positive("team_close", team_close);
   positive("look_from_m", look_from_m);
   positive("bump_radius", bump_radius);
   if (!(bump_width >= 0.0))
@@ -319,7 +320,7 @@ bool MissionAgent::teammateAhead(const Pose2& pose) const {
     const Eigen::Vector2d to = p - pose.translation();
     if (to.norm() < config_.team_distance &&
         std::abs(wrapAngle(std::atan2(to.y(), to.x()) - pose.theta)) < config_.team_half_angle &&
-        nearWay(p))
+        (to.norm() < config_.team_close || nearWay(p)))
       return true;
   }
   return false;

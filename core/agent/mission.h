@@ -51,6 +51,10 @@ struct MissionConfig {
   double team_half_angle = 1.05;  // rad
   double team_wait_s = 6.0;       // s
   double team_radius = 0.35;      // m: a teammate's body and a margin
+  // m: a teammate ahead farther than this stops the robot only if the way ahead passes it
+  // closer than its disc (once planned around, the robot drives on); nearer, always (what a
+  // teammate reports is off by its drift until its next fix).
+  double team_close = 0.6;
   // Bumped this many times on the way home within look_from_m of it, the robot looks at the
   // home base from where it is (the fix then takes it home).
   int max_return_bumps = 2;
