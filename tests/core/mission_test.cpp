@@ -136,6 +136,12 @@ TEST(MissionTest, BadBumpSettingsNameTheField) {
   c = MissionConfig{};
   c.claimed_return_factor = 1.5;
   EXPECT_THROW(c.validate(), std::invalid_argument);
+  c = MissionConfig{};
+  c.bump_width = -0.1;
+  EXPECT_THROW(c.validate(), std::invalid_argument);
+  c = MissionConfig{};
+  c.team_close = 0.0;
+  EXPECT_THROW(c.validate(), std::invalid_argument);
 }
 
 }  // namespace
