@@ -105,7 +105,7 @@ int main(int argc, char** argv) {
                    "which returns are the teammate and are not mapped (0: mapped like the world)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 2.0));
-  std::string closures = "none";
+  std::string closures = "self";
   cmd_run
       ->add_option("--closures", closures,
                    "With --explore: loop closures of each sortie's correction: stretches "
