@@ -13,8 +13,9 @@
 namespace coopmap {
 namespace {
 
-// A wall 3.8 m ahead of the robot; `people` is the world's people list.
-std::string writeWorld(const std::string& people) {
+// A wall 3.8 m ahead of the robot; `people` is the world's people list, `more_robots` robots
+// besides r (YAML list items).
+std::string writeWorld(const std::string& people, const std::string& more_robots = "") {
   return test_support::writeTestWorld("crossing",
                                       R"(floor: {min: [-1, -4], max: [4, 4], texture: carpet}
 walls:
@@ -24,7 +25,8 @@ home_base:
     - {position: [0, 3.5], heading_deg: 0}
     - {position: [1, 3.5], heading_deg: 0}
   texture: poster
-)" + people);
+)" + people,
+                                      "", more_robots);
 }
 
 TEST(PeopleScenarioTest, PersonCrossingShowsThenLeavesNoObstacle) {
@@ -69,19 +71,9 @@ TEST(PeopleScenarioTest, ATeammateIsNotLoggedWhereItReportsItself) {
   // the teammate is an obstacle in what r logs (and would post); masked where it reports
   // itself (perfect odometry: where it is), it is not, and the wall beside it still is. r's
   // own map, which it drives by, shows the teammate either way.
-  const std::string world = test_support::writeTestWorld(
-      "teammate", R"(floor: {min: [-1, -4], max: [4, 4], texture: carpet}
-walls:
-  - {from: [3.8, -4], to: [3.8, 4], thickness: 0.1, height: 2.5, texture: poster}
-home_base:
-  corners:
-    - {position: [0, 3.5], heading_deg: 0}
-    - {position: [1, 3.5], heading_deg: 0}
-  texture: poster
-)",
-      "",
-      "  - name: mate\n    model: " + std::string(COOPMAP_SOURCE_DIR) +
-          "/robots/b14/b14.yaml\n    start: {position: [2.0, 0.0], heading_deg: 0}\n");
+  const std::string world = writeWorld(
+      "", "  - name: mate\n    model: " + std::string(COOPMAP_SOURCE_DIR) +
+              "/robots/b14/b14.yaml\n    start: {position: [2.0, 0.0], heading_deg: 0}\n");
   for (const double mask : {0.0, 0.5}) {
     RunOptions o;
     o.world_file = world;
