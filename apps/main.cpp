@@ -80,6 +80,40 @@ int main(int argc, char** argv) {
                    "localized, share its corrected traverse and import the shared map")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
+  double first_sortie_budget = 0.0, safety_distance = 0.0, slow_distance = 0.0,
+         fringe_clearance = 0.0;
+  bool retry_frontiers = false, no_retry_frontiers = false;
+  cmd_run
+      ->add_option("--first-sortie-budget", first_sortie_budget,
+                   "With --explore and sorties: metres of the first sortie (0: --sortie-budget); "
+                   "a short first one calibrates the odometry near home before long ones "
+                   "[default: the world's mission settings, else 0]")
+      ->check(CLI::NonNegativeNumber);
+  cmd_run
+      ->add_option("--safety-distance", safety_distance,
+                   "With --explore: m from the cameras; an obstacle ahead nearer than this stops "
+                   "the robot [default: the world's, else 0.30]")
+      ->check(CLI::PositiveNumber);
+  cmd_run
+      ->add_option("--slow-distance", slow_distance,
+                   "With --explore: m; an obstacle ahead nearer than this slows the robot "
+                   "(0: never) [default: the world's, else 0]")
+      ->check(CLI::NonNegativeNumber);
+  cmd_run
+      ->add_option("--fringe-clearance", fringe_clearance,
+                   "With --explore: m; uncertain cells this far from obstacles, joined to unseen "
+                   "ones, make frontiers when no other frontier has a goal (0: off) [default: "
+                   "the world's, else 0]")
+      ->check(CLI::NonNegativeNumber);
+  auto* retry_opt = cmd_run->add_flag(
+      "--retry-frontiers", retry_frontiers,
+      "With --explore and sorties: frontiers whose goals failed send the robot home to share "
+      "and try again next sortie, rather than end exploration; reached goals are not tried "
+      "again [default: the world's, else off]");
+  cmd_run
+      ->add_flag("--no-retry-frontiers", no_retry_frontiers,
+                 "With --explore: end exploration when no frontier goal is left this sortie")
+      ->excludes(retry_opt);
   cmd_run
       ->add_option("--sorties", run.max_sorties,
                    "With --explore: sorties at most (1: explore once, share after the run)")
@@ -486,6 +520,12 @@ int main(int argc, char** argv) {
       if (robots > 0) run.robots = robots;
       if (!odometry.empty()) run.odometry = odometry;
       if (sensing_rate > 0.0) run.sensing_rate = sensing_rate;
+      if (cmd_run->count("--first-sortie-budget")) run.first_sortie_budget_m = first_sortie_budget;
+      if (cmd_run->count("--safety-distance")) run.safety_distance = safety_distance;
+      if (cmd_run->count("--slow-distance")) run.slow_distance = slow_distance;
+      if (cmd_run->count("--fringe-clearance")) run.fringe_clearance = fringe_clearance;
+      if (retry_frontiers) run.retry_frontiers = true;
+      if (no_retry_frontiers) run.retry_frontiers = false;
       run.progress = !quiet;
       run.share_maps = true;
       const coopmap::RunResult r = coopmap::runWorld(run);

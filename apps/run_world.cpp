@@ -108,6 +108,14 @@ void writeOutputs(const RunOptions& opt, const sim::World& world, const RunResul
     j.value("time_to_75_percent_coverage_s", result.time_to_75_s);
     j.value("time_to_90_percent_coverage_s", result.time_to_90_s);
   }
+  if (const auto& m = result.mission_settings) {
+    j.beginObject("mission_settings");
+    j.value("first_sortie_budget_m", m->first_sortie_budget_m);
+    j.value("safety_distance", m->safety_distance).value("slow_distance", m->slow_distance);
+    j.value("fringe_clearance", m->fringe_clearance);
+    j.value("retry_frontiers", m->retry_frontiers);
+    j.endObject();
+  }
   j.value("sim_time_s", result.sim_time_s).value("wall_time_s", result.wall_time_s);
   j.value("real_time_factor", result.real_time_factor);
   j.beginObject("timing_s");
@@ -196,6 +204,7 @@ RunResult runWorld(const RunOptions& opt) {
   std::optional<LocalSharedMap> live;
   if (cooperative) live.emplace(limits, OccupancyConfig{});
   std::vector<RobotRun> runs;
+  std::optional<RunResult::MissionSettings> settings;
   for (int i = 0; i < robot_count; ++i) {
     const sim::RobotSpec& spec = world.robots[i];
     RobotModel model = loadRobotModel(spec.model_file);
@@ -233,6 +242,24 @@ RunResult runWorld(const RunOptions& opt) {
       mission.planner.seed = static_cast<uint32_t>(opt.seed + i);
       mission.budget_m = opt.sortie_budget_m;
       mission.budget_s = opt.sortie_budget_s;
+      // The command line's settings, else the world's, else the defaults.
+      const sim::World::Exploration& we = world.exploration;
+      auto pick = [](const auto& option, const auto& from_world, auto fallback) {
+        return option ? *option : from_world ? *from_world : fallback;
+      };
+      mission.first_budget_m =
+          cooperative ? pick(opt.first_sortie_budget_m, we.first_sortie_budget_m, 0.0) : 0.0;
+      mission.safety_distance =
+          pick(opt.safety_distance, we.safety_distance, mission.safety_distance);
+      mission.slow_distance = pick(opt.slow_distance, we.slow_distance, mission.slow_distance);
+      mission.frontiers.fringe_clearance =
+          pick(opt.fringe_clearance, we.fringe_clearance, mission.frontiers.fringe_clearance);
+      mission.retry_frontiers =
+          pick(opt.retry_frontiers, we.retry_frontiers, mission.retry_frontiers);
+      mission.validate();
+      settings = RunResult::MissionSettings{
+          mission.first_budget_m, mission.safety_distance, mission.slow_distance,
+          mission.frontiers.fringe_clearance, mission.retry_frontiers};
       mission.max_sorties = cooperative ? opt.max_sorties : 1;
       r.mission = std::make_unique<MissionAgent>(spec.start, mission);
       if (cooperative) {
@@ -420,6 +447,7 @@ RunResult runWorld(const RunOptions& opt) {
   result.sim_time_s = sim.time();
   result.timing = timing;
   result.cooperative = cooperative;
+  result.mission_settings = settings;
   result.timeline = std::move(timeline);
   auto firstReaching = [&](double coverage) {
     for (const TimelineSample& s : result.timeline)

@@ -42,7 +42,14 @@ struct RunOptions {
   // it (core/agent/cooperation.h), then goes again, at most max_sorties times. With
   // max_sorties 1 it explores once and the maps are shared after the run (share_maps).
   double sortie_budget_m = 25.0;
-  double sortie_budget_s = 400.0;  // s: a robot stuck (wheels slipping) goes home too
+  // Unset: the world's mission settings (World::Exploration), else MissionConfig's and
+  // FrontierConfig's defaults.
+  std::optional<double> first_sortie_budget_m;  // 0: sortie_budget_m
+  std::optional<double> safety_distance;        // m: MissionConfig::safety_distance
+  std::optional<double> slow_distance;          // m: MissionConfig::slow_distance (0: off)
+  std::optional<double> fringe_clearance;       // m: FrontierConfig::fringe_clearance (0: off)
+  std::optional<bool> retry_frontiers;          // MissionConfig::retry_frontiers
+  double sortie_budget_s = 400.0;               // s: a robot stuck (wheels slipping) goes home too
   int max_sorties = 12;
   // A robot whose first fix at the end of a sortie puts it farther than this (m) from its
   // start drives there by that fix and looks again before the sortie is corrected.
@@ -152,6 +159,13 @@ struct RunResult {
   std::vector<RobotRunResult> robots;
   SharedMapResult shared_map;
   bool cooperative = false;  // the shared map was built during the run, sortie by sortie
+  // The mission settings the run used (command line, else the world's, else defaults).
+  struct MissionSettings {
+    double first_sortie_budget_m = 0.0, safety_distance = 0.0, slow_distance = 0.0;
+    double fringe_clearance = 0.0;
+    bool retry_frontiers = false;
+  };
+  std::optional<MissionSettings> mission_settings;  // with --explore
   std::vector<TimelineSample> timeline;
   double time_to_90_s = -1.0;  // first sample with shared coverage >= 0.9 (-1: never)
   double time_to_50_s = -1.0, time_to_75_s = -1.0;  // the same for 0.5 and 0.75

@@ -50,6 +50,19 @@ void MissionConfig::validate() const {
   positive("team_close", team_close);
   positive("look_from_m", look_from_m);
   positive("bump_radius", bump_radius);
+  positive("max_home_detour", max_home_detour);
+  if (!(slow_distance >= 0.0))
+    throw std::invalid_argument(
+        "mission config: field 'slow_distance': expected a number >= 0 (0: off), got " +
+        std::to_string(slow_distance));
+  if (!(slow_fraction > 0.0 && slow_fraction <= 1.0))
+    throw std::invalid_argument(
+        "mission config: field 'slow_fraction': expected a number in (0, 1], got " +
+        std::to_string(slow_fraction));
+  if (!(first_budget_m >= 0.0))
+    throw std::invalid_argument(
+        "mission config: field 'first_budget_m': expected a number >= 0 (0: budget_m), got " +
+        std::to_string(first_budget_m));
   if (!(bump_width >= 0.0))
     throw std::invalid_argument("mission config: field 'bump_width': expected a number >= 0, got " +
                                 std::to_string(bump_width));
@@ -116,6 +129,15 @@ void MissionAgent::startRoute(std::vector<Waypoint> route, double) {
   follower_ = std::make_unique<RouteFollower>(std::move(route), config_.route);
 }
 
+MotionCommand MissionAgent::slowed(MotionCommand cmd) const {
+  if (config_.slow_distance <= config_.safety_distance || cmd.linear <= 0.0) return cmd;
+  const double f = std::clamp((nearest_ahead_ - config_.safety_distance) /
+                                  (config_.slow_distance - config_.safety_distance),
+                              config_.slow_fraction, 1.0);
+  cmd.linear = std::min(cmd.linear, f * config_.route.linear_speed);
+  return cmd;
+}
+
 bool MissionAgent::obstacleAhead(const RadialMap& scan) const {
   for (const RadialReading& r : scan.readings)
     if (r.kind == RadialKind::kHit && r.range < config_.safety_distance &&
@@ -175,6 +197,28 @@ std::optional<Eigen::Vector2d> MissionAgent::nearestFreeCell(const PlanningMap& 
   return to;
 }
 
+std::optional<Eigen::Vector2d> MissionAgent::nearestReachable(const PlanningMap& planning,
+                                                              const Pose2& from,
+                                                              const Eigen::Vector2d& to) const {
+  const MapLimits& lim = planning.limits();
+  const int region = planning.region(lim.cellX(from.x), lim.cellY(from.y));
+  if (region == 0) return std::nullopt;
+  const double start = (to - from.translation()).norm();
+  double best = start - 0.5;  // worth going only if it is at least 0.5 m nearer home
+  std::optional<Eigen::Vector2d> out;
+  for (int iy = 0; iy < lim.height; ++iy)
+    for (int ix = 0; ix < lim.width; ++ix) {
+      if (planning.region(ix, iy) != region) continue;
+      const Eigen::Vector2d c = lim.cellCenter(ix, iy);
+      const double d = (c - to).norm();
+      if (d < best) {
+        best = d;
+        out = c;
+      }
+    }
+  return out;
+}
+
 void MissionAgent::chooseGoal(double now, const Pose2& odometry, const OccupancyGrid& map) {
   const PlanningMap planning = planningMap(map, false);
   if (!planning.freeAt(odometry.translation())) {
@@ -198,9 +242,18 @@ void MissionAgent::chooseGoal(double now, const Pose2& odometry, const Occupancy
     goHome(now, odometry, map);
     return;
   }
+  if (config_.retry_frontiers && step.status == ExploreStatus::kDone && step.failed_left > 0 &&
+      config_.max_sorties > 1 && travelled_ >= config_.min_sortie_m) {
+    // Frontiers are left that this sortie could not reach (their goals failed, or have no
+    // way to them in this map). After an import the map is another: home to share, and try
+    // them again from there; a sortie that finds none from (near) its start is done.
+    last_event_ = "no reachable frontier for now: " + step.reason;
+    goHome(now, odometry, map);
+    return;
+  }
   if (step.status != ExploreStatus::kGoal) {
     exploration_complete_ = true;
-    last_event_ = "exploration complete: " + step.reason;
+    last_event_ = complete_reason_ = "exploration complete: " + step.reason;
     goHome(now, odometry, map);
     return;
   }
@@ -226,6 +279,7 @@ void MissionAgent::chooseGoal(double now, const Pose2& odometry, const Occupancy
 void MissionAgent::goHome(double now, const Pose2& odometry, const OccupancyGrid& map) {
   phase_ = MissionPhase::kReturn;
   has_goal_ = false;
+  plan_home_at_end_ = false;
   // On a blocked cell (backed off from a bump into what it has just drawn): step off to the
   // nearest free cell first, and plan from there.
   const PlanningMap planning = planningMap(map, false);
@@ -234,8 +288,19 @@ void MissionAgent::goHome(double now, const Pose2& odometry, const OccupancyGrid
   if (step_off)
     if (const std::optional<Eigen::Vector2d> to = nearestFreeCell(planning, odometry))
       from = Pose2(to->x(), to->y(), odometry.theta);
-  PlanResult plan = planner_.plan(planning, from, target_.translation());
-  if (!plan.solved()) plan = planner_.plan(planningMap(map, true), from, target_.translation());
+  const Eigen::Vector2d home = target_.translation();
+  PlanResult plan = planner_.plan(planning, from, home);
+  if (!plan.solved()) {
+    PlanResult unknown = planner_.plan(planningMap(map, true), from, home);
+    const double straight = (home - from.translation()).norm();
+    if (unknown.solved() && unknown.path.length() <= config_.max_home_detour * straight + 2.0) {
+      plan = std::move(unknown);
+    } else if (const std::optional<Eigen::Vector2d> near = nearestReachable(planning, from, home)) {
+      // No short way home: as near to it as the known free space goes, and plan again there.
+      plan = planner_.plan(planning, from, *near);
+      if (plan.solved()) plan_home_at_end_ = true;
+    }
+  }
   if (plan.solved()) {
     path_ = plan.path;
     if (step_off) path_.waypoints.insert(path_.waypoints.begin(), odometry.translation());
@@ -250,6 +315,8 @@ void MissionAgent::continueAfterFix(double now) {
   if (phase_ != MissionPhase::kAtHome) return;
   if (exploration_complete_ || sortie_ >= config_.max_sorties) {
     phase_ = MissionPhase::kDone;
+    last_event_ =
+        exploration_complete_ ? complete_reason_ : "done: " + std::to_string(sortie_) + " sorties";
     return;
   }
   ++sortie_;
@@ -348,6 +415,12 @@ MotionCommand MissionAgent::update(double now, const Pose2& odometry, const Occu
   pose_jumped_ = false;
   last_pose_ = odometry;
   markVisited(map, odometry);
+  if (latest) {
+    nearest_ahead_ = 1e9;
+    for (const RadialReading& r : latest->readings)
+      if (r.kind == RadialKind::kHit && std::abs(r.bearing) < config_.safety_half_angle)
+        nearest_ahead_ = std::min(nearest_ahead_, r.range);
+  }
   // Touching something: back off, give the goal up, plan anew.
   if (now < backoff_until_) return last_command_ = MotionCommand{-0.1, 0.0};
   const bool moving = phase_ == MissionPhase::kExplore || phase_ == MissionPhase::kReturn;
@@ -431,7 +504,9 @@ MotionCommand MissionAgent::update(double now, const Pose2& odometry, const Occu
       return MotionCommand::stop();
     }
     case MissionPhase::kExplore: {
-      if (travelled_ >= config_.budget_m || now - sortie_start_ >= config_.budget_s) {
+      const double budget =
+          sortie_ == 1 && config_.first_budget_m > 0.0 ? config_.first_budget_m : config_.budget_m;
+      if (travelled_ >= budget || now - sortie_start_ >= config_.budget_s) {
         last_event_ = "budget spent";
         goHome(now, odometry, map);
         return MotionCommand::stop();
@@ -466,7 +541,12 @@ MotionCommand MissionAgent::update(double now, const Pose2& odometry, const Occu
       if (follower_ && follower_->done()) {
         // Reached: the frontier is seen from here or never will be; do not come back.
         ++goals_reached_;
-        if (has_goal_) explorer_.blacklist(goal_);
+        if (has_goal_) {
+          if (config_.retry_frontiers)
+            explorer_.markReached(goal_);
+          else
+            explorer_.blacklist(goal_);
+        }
         follower_.reset();
       }
       if (follower_ && has_goal_ && path_.waypoints.size() >= 2 &&
@@ -493,7 +573,7 @@ MotionCommand MissionAgent::update(double now, const Pose2& odometry, const Occu
         chooseGoal(now, odometry, map);
         return last_command_ = MotionCommand::stop();
       }
-      return last_command_ = follower_->update(odometry, now);
+      return last_command_ = slowed(follower_->update(odometry, now));
     }
     case MissionPhase::kReturn: {
       if (plan_home_) {
@@ -507,7 +587,11 @@ MotionCommand MissionAgent::update(double now, const Pose2& odometry, const Occu
         goHome(now, odometry, map);  // around whatever is in the way
         return last_command_ = MotionCommand::stop();
       }
-      if (!follower_->done()) return last_command_ = follower_->update(odometry, now);
+      if (!follower_->done()) return last_command_ = slowed(follower_->update(odometry, now));
+      if (plan_home_at_end_) {  // as near home as the map went: the map has grown since
+        goHome(now, odometry, map);
+        return last_command_ = MotionCommand::stop();
+      }
       phase_ = MissionPhase::kLookAgain;
       startRoute({{target_.translation(), true, config_.look_turn_rate, 0.0}}, now);
       return last_command_ = MotionCommand::stop();

@@ -21,11 +21,36 @@
 namespace coopmap {
 
 struct MissionConfig {
-  double budget_m = 60.0;            // m driven before going home
-  double budget_s = 900.0;           // s of mission before going home
-  double replan_period_s = 4.0;      // s between checks of the path against the growing map
-  double safety_distance = 0.30;     // m: an obstacle this close ahead stops the robot
-  double safety_half_angle = 0.5;    // rad: "ahead"
+  double budget_m = 60.0;   // m driven before going home
+  double budget_s = 900.0;  // s of mission before going home
+  // m driven before going home on the first sortie (0: budget_m). A short first sortie
+  // brings the robot back while its odometry is still uncalibrated (its systematic heading
+  // drift unknown) and near home; the fix calibrates the odometry for the longer ones.
+  double first_budget_m = 0.0;
+  // Home through unknown territory only if that way is at most this many times the straight
+  // distance plus 2 m: a longer one (round a corridor loop) would drive the robot far through
+  // places it has never seen while its odometry drifts. Else it drives to the free cell it can
+  // reach nearest home and plans again from there.
+  double max_home_detour = 2.0;
+  // When no frontier goal is left and some failed this sortie (or had no way to them), after
+  // at least min_sortie_m: home to share and try them again next sortie (the imported map is
+  // another), rather than end exploration. Goals reached are then remembered for good: what
+  // the robot did not see from there it will not. Off: exploration ends there (the paper's
+  // rooms; a building whose corridors a sortie cannot reach in one go wants it on).
+  bool retry_frontiers = false;
+  double replan_period_s = 4.0;  // s between checks of the path against the growing map
+  // m from the cameras: an obstacle this close ahead stops the robot. The stereo sees
+  // nothing nearer than 0.26 m (32 disparities, 8 px m of focal length times baseline), and a
+  // robot at 0.4 m/s moves 0.13 m between frames: 0.30 m leaves a narrow band (0.45 m with
+  // slow_distance 1 m halved the contacts on the lab and the building: README).
+  double safety_distance = 0.30;
+  double safety_half_angle = 0.5;  // rad: "ahead"
+  // m: an obstacle ahead nearer than this slows the robot, in proportion down to
+  // slow_fraction of its cruise at safety_distance (the cameras see 3 times a second and
+  // nothing nearer than their stereo's least depth: at full speed a person walking towards
+  // the robot crossed the whole band between that depth and safety_distance unseen). 0: off.
+  double slow_distance = 0.0;
+  double slow_fraction = 0.35;
   double look_wait_s = 3.0;          // s facing the home base before the slow turn
   double look_turn_rate = 0.26;      // rad/s of the turns in place at home
   double goal_timeout_factor = 4.0;  // a goal not reached in this many times its path's
@@ -126,11 +151,17 @@ class MissionAgent {
   std::vector<Eigen::Vector2d> bumps_;  // where the bumpers touched something this sortie
   void markVisited(const OccupancyGrid& map, const Pose2& odometry);
   bool obstacleAhead(const RadialMap& scan) const;
+  // The command with its forward speed capped by the nearest obstacle ahead (slow_distance).
+  MotionCommand slowed(MotionCommand cmd) const;
+  double nearest_ahead_ = 1e9;  // m: the nearest hit ahead in the latest radial map
   void chooseGoal(double now, const Pose2& odometry, const OccupancyGrid& map);
   // The free cell nearest the robot within escape_radius, if any.
   std::optional<Eigen::Vector2d> nearestFreeCell(const PlanningMap& planning,
                                                  const Pose2& odometry) const;
   void goHome(double now, const Pose2& odometry, const OccupancyGrid& map);
+  // The free cell of `from`'s region nearest `to`, if it is at least 0.5 m nearer than `from`.
+  std::optional<Eigen::Vector2d> nearestReachable(const PlanningMap& planning, const Pose2& from,
+                                                  const Eigen::Vector2d& to) const;
 
   Pose2 home_;
   Pose2 target_;  // where "home" is this sortie (home_, or returnAgain's)
@@ -151,6 +182,10 @@ class MissionAgent {
   int sortie_ = 1;
   bool pose_jumped_ = false;
   bool plan_home_ = false;  // returnAgain: plan the way home at the next update
+  bool plan_home_at_end_ = false;
+  std::string complete_reason_;  // why exploration was found complete
+  int sortie_goals_ =
+      0;  // goals reached this sortie  // the route ends short of home: plan again there
   int return_bumps_ = 0;
   int sortie_bumps_ = 0;
   std::vector<Eigen::Vector2d> teammates_;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 namespace coopmap {
@@ -19,6 +20,7 @@ void FrontierConfig::validate() const {
   if (!(blacklist_radius >= 0.0)) bad("blacklist_radius", "a number >= 0", blacklist_radius);
   if (max_plans < 1) bad("max_plans", "an integer >= 1", max_plans);
   if (!(claim_radius >= 0.0)) bad("claim_radius", "a number >= 0", claim_radius);
+  if (!(fringe_clearance >= 0.0)) bad("fringe_clearance", "a number >= 0", fringe_clearance);
 }
 
 std::vector<Frontier> findFrontiers(const OccupancyGrid& grid, const PlanningMap& planning,
@@ -28,12 +30,66 @@ std::vector<Frontier> findFrontiers(const OccupancyGrid& grid, const PlanningMap
   if (planning.limits().width != lim.width || planning.limits().height != lim.height)
     throw std::invalid_argument("findFrontiers: the planning map's limits differ from the grid's");
   const int w = lim.width, h = lim.height;
+  // Open unknown: never observed, or observed too little to tell free from occupied, away
+  // from obstacles and joined (4-connected, through such cells) to never-observed ones. The
+  // far ends of long stereo rays leave a fringe of the latter between free and unobserved
+  // space, which once hid whole corridors from the explorer (no free cell touched an
+  // unobserved one). Uncertain cells beside obstacles (stereo's bands along walls and
+  // furniture) are left out: driving up to them shows little and bumps into things.
+  const int keep = static_cast<int>(std::ceil(config.fringe_clearance / lim.resolution));
+  GridU8 near_obstacle(lim, 0);
+  {
+    std::vector<std::pair<int, int>> ring, next;
+    for (int iy = 0; iy < h; ++iy)
+      for (int ix = 0; ix < w; ++ix)
+        if (grid.state(ix, iy) == CellState::kOccupied) {
+          near_obstacle.at(ix, iy) = 1;
+          ring.push_back({ix, iy});
+        }
+    for (int step = 0; step < keep && !ring.empty(); ++step) {
+      next.clear();
+      for (const auto& [x, y] : ring)
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx) {
+            const int jx = x + dx, jy = y + dy;
+            if (lim.contains(jx, jy) && !near_obstacle.at(jx, jy)) {
+              near_obstacle.at(jx, jy) = 1;
+              next.push_back({jx, jy});
+            }
+          }
+      ring.swap(next);
+    }
+  }
+  GridU8 open(lim, 0);
+  {
+    std::vector<std::pair<int, int>> todo;
+    for (int iy = 0; iy < h; ++iy)
+      for (int ix = 0; ix < w; ++ix)
+        if (!grid.seen(ix, iy)) {
+          open.at(ix, iy) = 1;
+          todo.push_back({ix, iy});
+        }
+    while (keep > 0 && !todo.empty()) {
+      const auto [x, y] = todo.back();
+      todo.pop_back();
+      const int n[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
+      for (const auto& d : n) {
+        const int jx = x + d[0], jy = y + d[1];
+        if (lim.contains(jx, jy) && !open.at(jx, jy) && !near_obstacle.at(jx, jy) &&
+            grid.state(jx, jy) == CellState::kUnknown) {
+          open.at(jx, jy) = 1;
+          todo.push_back({jx, jy});
+        }
+      }
+    }
+  }
+  auto unknown = [&](int ix, int iy) { return open.at(ix, iy) != 0; };
   auto isFrontier = [&](int ix, int iy) {
     if (grid.state(ix, iy) != CellState::kFree) return false;
     const int n[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
     for (const auto& d : n) {
       const int jx = ix + d[0], jy = iy + d[1];
-      if (lim.contains(jx, jy) && !grid.seen(jx, jy)) return true;
+      if (lim.contains(jx, jy) && unknown(jx, jy)) return true;
     }
     return false;
   };
@@ -66,7 +122,8 @@ std::vector<Frontier> findFrontiers(const OccupancyGrid& grid, const PlanningMap
       if (static_cast<int>(f.cells.size()) < config.min_cells) continue;
       for (const Eigen::Vector2d& c : f.cells) f.centroid += c;
       f.centroid /= static_cast<double>(f.cells.size());
-      // Gain: never-observed cells around the centroid.
+      // Gain: never-observed cells around the centroid (cells observed but not known are
+      // mostly beside obstacles, where stereo leaves them uncertain: a look more rarely helps).
       const int r = static_cast<int>(std::ceil(config.gain_radius / lim.resolution));
       const int gx = lim.cellX(f.centroid.x()), gy = lim.cellY(f.centroid.y());
       for (int jy = gy - r; jy <= gy + r; ++jy)
@@ -101,7 +158,14 @@ FrontierExplorer::FrontierExplorer(const FrontierConfig& frontiers, const Planne
   config_.validate();
 }
 
+bool FrontierExplorer::reached(const Eigen::Vector2d& goal) const {
+  for (const Eigen::Vector2d& b : reached_)
+    if ((b - goal).norm() <= config_.blacklist_radius) return true;
+  return false;
+}
+
 bool FrontierExplorer::blacklisted(const Eigen::Vector2d& goal) const {
+  if (reached(goal)) return true;
   for (const Eigen::Vector2d& b : blacklist_)
     if ((b - goal).norm() <= config_.blacklist_radius) return true;
   return false;
@@ -119,14 +183,25 @@ double FrontierExplorer::claimFactor(const Eigen::Vector2d& goal,
 ExploreStep FrontierExplorer::next(const OccupancyGrid& grid, const PlanningMap& planning,
                                    const Pose2& robot,
                                    const std::vector<Eigen::Vector2d>& claimed) {
-  ExploreStep step;
   if (!planning.freeAt(robot.translation())) {
+    ExploreStep step;
     step.status = ExploreStatus::kBlocked;
     step.reason = "the robot stands on a blocked cell";
     return step;
   }
+  FrontierConfig plain = config_;
+  plain.fringe_clearance = 0.0;
+  ExploreStep step = nextWith(plain, grid, planning, robot, claimed);
+  if (step.status != ExploreStatus::kDone || config_.fringe_clearance <= 0.0) return step;
+  return nextWith(config_, grid, planning, robot, claimed);
+}
+
+ExploreStep FrontierExplorer::nextWith(const FrontierConfig& config, const OccupancyGrid& grid,
+                                       const PlanningMap& planning, const Pose2& robot,
+                                       const std::vector<Eigen::Vector2d>& claimed) {
+  ExploreStep step;
   const std::vector<Frontier> frontiers =
-      findFrontiers(grid, planning, robot.translation(), config_);
+      findFrontiers(grid, planning, robot.translation(), config);
   step.frontiers = static_cast<int>(frontiers.size());
   // Candidates by straight-line utility first; only the best few are planned.
   struct Candidate {
@@ -142,10 +217,25 @@ ExploreStep FrontierExplorer::next(const OccupancyGrid& grid, const PlanningMap&
     candidates.push_back({&f, claim * f.gain / (1.0 + config_.cost_weight * d), claim});
   }
   if (candidates.empty()) {
-    step.reason = frontiers.empty() ? "no frontier left"
-                                    : std::to_string(frontiers.size()) +
-                                          " frontiers, none with a reachable goal not "
-                                          "blacklisted";
+    if (frontiers.empty()) {
+      step.reason = "no frontier left";
+      return step;
+    }
+    // Where they are and why none is a goal: for people reading the mission's last event.
+    step.reason = std::to_string(frontiers.size()) +
+                  " frontiers, none with a reachable goal not blacklisted:";
+    char buf[96];
+    for (const Frontier& f : frontiers) {
+      const bool seen_from_goal = f.has_goal && reached(f.goal);
+      std::snprintf(buf, sizeof buf, " (%.1f, %.1f) %s;", f.centroid.x(), f.centroid.y(),
+                    !f.has_goal      ? "no reachable goal"
+                    : f.gain == 0    ? "nothing unknown near"
+                    : seen_from_goal ? "looked from its goal before"
+                                     : "goal blacklisted");
+      step.reason += buf;
+      step.failed_left += f.gain > 0 && !seen_from_goal;
+    }
+    step.reason.pop_back();
     return step;
   }
   std::stable_sort(candidates.begin(), candidates.end(),
@@ -168,8 +258,10 @@ ExploreStep FrontierExplorer::next(const OccupancyGrid& grid, const PlanningMap&
       step.plan = std::move(plan);
     }
   }
-  if (step.status == ExploreStatus::kDone)
+  if (step.status == ExploreStatus::kDone) {
     step.reason = "no plan to any of the " + std::to_string(candidates.size()) + " frontiers";
+    step.failed_left = static_cast<int>(candidates.size());
+  }
   return step;
 }
 

@@ -1,8 +1,8 @@
-// Frontier exploration (Yamauchi 1997), on the map's seen layer: frontiers are observed free
-// cells next to never-observed ones, grouped; each gets a goal the robot can stand on and
-// reach, an information gain (unknown cells near it) and a path cost (the planner's path
-// length); the explorer picks the best gain per cost, and failed goals are blacklisted, not
-// fatal. Exploration is over when no reachable frontier is left.
+// Frontier exploration (Yamauchi 1997): frontiers are free cells next to cells not known
+// (never observed, or observed too little to tell, on the far side of long rays), grouped; each
+// gets a goal the robot can stand on and reach, an information gain (unknown cells near it) and a
+// path cost (the planner's path length); the explorer picks the best gain per cost, and failed
+// goals are blacklisted, not fatal. Exploration is over when no reachable frontier is left.
 #pragma once
 
 #include <string>
@@ -28,7 +28,11 @@ struct FrontierConfig {
   // whose goal lies within claim_radius of a point a teammate has claimed (its goals) is
   // worth less by the chance that the teammate sees it: utility * distance / claim_radius.
   double claim_radius = 2.5;  // m; 0 turns coordination off
-  void validate() const;      // throws std::invalid_argument naming the field
+  // m: cells observed but uncertain, this far from any occupied cell and joined to never-
+  // observed ones, count as unknown for frontiers (the fringe long stereo rays leave); 0:
+  // only never-observed cells do.
+  double fringe_clearance = 0.0;
+  void validate() const;  // throws std::invalid_argument naming the field
 };
 
 struct Frontier {
@@ -36,10 +40,11 @@ struct Frontier {
   Eigen::Vector2d centroid{0.0, 0.0};  // m
   bool has_goal = false;               // a reachable cell the robot can stand on, near it:
   Eigen::Vector2d goal{0.0, 0.0};      // m (valid when has_goal)
-  int gain = 0;                        // unknown cells within gain_radius of the centroid
+  int gain = 0;                        // never-observed cells within gain_radius of the centroid
 };
 
-// Frontier cells: observed free cells with a 4-neighbour never observed; grouped
+// Frontier cells: free cells with a 4-neighbour not known (never observed, or observed but
+// uncertain, away from obstacles and joined to never-observed cells: fringe_clearance); grouped
 // 8-connected; groups smaller than min_cells dropped. Goals are looked for in `planning`'s
 // free cells connected to `robot` (m); frontiers without one have has_goal false.
 std::vector<Frontier> findFrontiers(const OccupancyGrid& grid, const PlanningMap& planning,
@@ -56,6 +61,7 @@ struct ExploreStep {
   int frontiers = 0;          // found this time (with or without a reachable goal)
   double claim_factor = 1.0;  // of the chosen one: 1 unclaimed, near 0 a teammate's goal
   std::string reason;         // why done
+  int failed_left = 0;        // when done: frontiers whose goals failed or that have none
 };
 
 // Chooses where to explore next; remembers failed goals.
@@ -65,7 +71,9 @@ class FrontierExplorer {
 
   // The best frontier to go to from `robot` on `grid` (planning map built with the
   // robot's radius), with its plan; kDone when no reachable frontier is left. `claimed`:
-  // where teammates explore (map frame), see FrontierConfig::claim_radius.
+  // where teammates explore (map frame), see FrontierConfig::claim_radius. Frontiers on the
+  // fringe of uncertain cells (fringe_clearance) are looked at only when no frontier on
+  // never-observed cells has a goal: near obstacles they draw the robot into bumps.
   ExploreStep next(const OccupancyGrid& grid, const PlanningMap& planning, const Pose2& robot,
                    const std::vector<Eigen::Vector2d>& claimed = {});
   // The factor by which `claimed` lowers the utility of a frontier whose goal is `goal`.
@@ -73,15 +81,23 @@ class FrontierExplorer {
                      const std::vector<Eigen::Vector2d>& claimed) const;
   // The robot could not reach this goal: never choose it (or a goal near it) again.
   void blacklist(const Eigen::Vector2d& goal) { blacklist_.push_back(goal); }
-  // Forgets the failed goals (the map, or the frame it is in, changed).
+  // The robot reached this goal and looked from there: what it did not see then it will
+  // not see from there again. Kept across clearBlacklist (never chosen again).
+  void markReached(const Eigen::Vector2d& goal) { reached_.push_back(goal); }
+  // Forgets the failed goals (the map, or the frame it is in, changed); not the reached ones.
   void clearBlacklist() { blacklist_.clear(); }
   const std::vector<Eigen::Vector2d>& blacklisted() const { return blacklist_; }
 
  private:
   bool blacklisted(const Eigen::Vector2d& goal) const;
+  ExploreStep nextWith(const FrontierConfig& config, const OccupancyGrid& grid,
+                       const PlanningMap& planning, const Pose2& robot,
+                       const std::vector<Eigen::Vector2d>& claimed);
   FrontierConfig config_;
   PathPlanner planner_;
   std::vector<Eigen::Vector2d> blacklist_;
+  std::vector<Eigen::Vector2d> reached_;
+  bool reached(const Eigen::Vector2d& goal) const;
 };
 
 }  // namespace coopmap

@@ -80,8 +80,13 @@ class MapMotionValidator : public ob::MotionValidator {
   }
   bool checkMotion(const ob::State* s1, const ob::State* s2,
                    std::pair<ob::State*, double>& last_valid) const override {
-    const std::optional<double> t = map_.firstBlockedOnSegment(point(s1), point(s2));
-    if (!t) return true;
+    std::optional<double> t = map_.firstBlockedOnSegment(point(s1), point(s2));
+    if (!t) {
+      // PlanningMap::segmentFree walks both ways: so does this.
+      const std::optional<double> back = map_.firstBlockedOnSegment(point(s2), point(s1));
+      if (!back) return true;
+      t = 1.0 - *back;
+    }
     // Back off from the blocked cell's boundary by a millionth of a cell.
     const double len = (point(s2) - point(s1)).norm() / map_.limits().resolution;
     const double back = len > 0.0 ? 1e-6 / len : 0.0;

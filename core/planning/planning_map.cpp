@@ -123,7 +123,11 @@ std::optional<double> PlanningMap::firstBlockedOnSegment(const Eigen::Vector2d& 
   const int max_steps = 2 * (std::abs(bx - ax) + std::abs(by - ay)) + 4;
   for (int step = 0; step < max_steps && (ix != bx || iy != by); ++step) {
     const double t = std::min(next_x, next_y);
-    if (t > 1.0) break;
+    // A boundary met at the very end (b on it) is not crossed: no part of the segment lies
+    // beyond it. Stepping over it made a segment ending on a cell corner next to a blocked
+    // cell blocked, while a longer one through the same corner, of which it is a part, was
+    // free.
+    if (t >= 1.0 - tie) break;
     if (std::abs(next_x - next_y) <= tie) {
       if (!free(ix + sx, iy) || !free(ix, iy + sy)) return std::max(0.0, t);
       ix += sx;

@@ -50,9 +50,11 @@ class PlanningMap {
   bool freeAt(const Eigen::Vector2d& p) const {
     return free(limits_.cellX(p.x()), limits_.cellY(p.y()));
   }
-  // Every cell the segment a -> b (m) passes through, corners included, is free.
+  // Every cell the segment a -> b (m) passes through, corners included, is free. Walked both
+  // ways, so that it is symmetric: an end exactly on a cell corner is rounded into one cell,
+  // and the walk starting there checks the corner's other cells, the walk ending there not.
   bool segmentFree(const Eigen::Vector2d& a, const Eigen::Vector2d& b) const {
-    return !firstBlockedOnSegment(a, b).has_value();
+    return !firstBlockedOnSegment(a, b).has_value() && !firstBlockedOnSegment(b, a).has_value();
   }
   // Fraction t in [0, 1] of a -> b where it first enters a cell that is not free (0 when a's
   // own cell is not); nullopt when the whole segment is free.

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <map>
 #include <numbers>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -168,6 +169,17 @@ struct World {
   // What `coopmap run` does by default: "routes" (each robot follows its scripted route) or
   // "explore" (autonomous missions: sorties from the home base, shared map).
   std::string mission = "routes";
+  // Settings of autonomous missions the building calls for (`mission: {mode: explore, ...}`;
+  // unset: coopmap's defaults; the command line overrides them). A building of long
+  // corridors wants other settings than a room: see worlds/lab_corridor.yaml.
+  struct Exploration {
+    std::optional<double> sortie_budget_m;        // m of a sortie
+    std::optional<double> first_sortie_budget_m;  // m of the first (calibration) sortie
+    std::optional<double> safety_distance;        // m: MissionConfig::safety_distance
+    std::optional<double> slow_distance;          // m: MissionConfig::slow_distance
+    std::optional<double> fringe_clearance;       // m: FrontierConfig::fringe_clearance
+    std::optional<bool> retry_frontiers;          // MissionConfig::retry_frontiers
+  } exploration;
 
   // Every solid that never moves, as boxes: walls, furniture, doors that stay closed,
   // home-base arms.

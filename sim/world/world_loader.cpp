@@ -194,8 +194,27 @@ World parseWorld(const std::string& text, const std::string& file) {
   w.file = file;
   w.name = root["name"].asString();
   if (const auto mission = root.get("mission")) {
-    w.mission = mission->asString();
-    if (w.mission != "routes" && w.mission != "explore") mission->fail("'routes' or 'explore'");
+    // "routes", "explore", or a map: {mode: routes|explore, and the exploration settings}.
+    const YamlField mode = mission->isMap() ? (*mission)["mode"] : *mission;
+    w.mission = mode.asString();
+    if (w.mission != "routes" && w.mission != "explore") mode.fail("'routes' or 'explore'");
+    if (mission->isMap()) {
+      mission->allowOnly({"mode", "sortie_budget_m", "first_sortie_budget_m", "safety_distance",
+                          "slow_distance", "fringe_clearance", "retry_frontiers"});
+      World::Exploration& e = w.exploration;
+      auto metres = [&](const char* key, double lo, double hi, const char* what,
+                        std::optional<double>& out) {
+        if (mission->has(key)) out = (*mission)[key].asDouble(lo, hi, what);
+      };
+      metres("sortie_budget_m", 1.0, 10000.0, "metres in [1, 10000]", e.sortie_budget_m);
+      metres("first_sortie_budget_m", 0.0, 10000.0, "metres in [0, 10000] (0: the sortie budget)",
+             e.first_sortie_budget_m);
+      metres("safety_distance", 0.05, 5.0, "metres in [0.05, 5]", e.safety_distance);
+      metres("slow_distance", 0.0, 10.0, "metres in [0, 10] (0: never slow down)", e.slow_distance);
+      metres("fringe_clearance", 0.0, 5.0, "metres in [0, 5] (0: off)", e.fringe_clearance);
+      if (mission->has("retry_frontiers"))
+        e.retry_frontiers = (*mission)["retry_frontiers"].asBool();
+    }
   }
   if (root.has("seed")) w.seed = static_cast<uint64_t>(root["seed"].asInt(0, 1 << 30));
 

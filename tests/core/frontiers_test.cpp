@@ -65,7 +65,9 @@ TEST(FrontiersTest, ExplorerPlansToTheBestFrontierAndBlacklistsFailures) {
   explorer.blacklist(second.frontier.goal);
   const ExploreStep none = explorer.next(g, p, robot);
   EXPECT_EQ(none.status, ExploreStatus::kDone);
-  EXPECT_EQ(none.reason, "2 frontiers, none with a reachable goal not blacklisted");
+  EXPECT_EQ(none.reason,
+            "2 frontiers, none with a reachable goal not blacklisted: (3.0, 0.8) goal "
+            "blacklisted; (3.0, 3.2) goal blacklisted");
 }
 
 TEST(FrontiersTest, AFrontierATeammateClaimedIsLeftToIt) {
@@ -102,6 +104,64 @@ TEST(FrontiersTest, AClosedRoomIsExplored) {
   const ExploreStep step = explorer.next(g, planningOf(g), Pose2(1.5, 2.0, 0.0));
   EXPECT_EQ(step.status, ExploreStatus::kDone);
   EXPECT_EQ(step.reason, "no frontier left");
+}
+
+TEST(FrontiersTest, AFringeObservedTooLittleToTellDoesNotHideTheUnknownBeyond) {
+  // Through the doorway, a stretch seen once from afar (the far ends of long stereo rays):
+  // observed, its log-odds too weak for free. Beyond it nothing has been seen. The explorer
+  // once found no frontier here (no free cell touched a never-observed one) and called the
+  // exploration complete with a whole corridor unseen.
+  OccupancyGrid g = roomWithDoors({{1.5, 2.5}});
+  const MapLimits& lim = g.limits();
+  std::vector<int16_t> lo(lim.size());
+  std::vector<uint8_t> seen(lim.size());
+  for (int iy = 0; iy < lim.height; ++iy)
+    for (int ix = 0; ix < lim.width; ++ix) {
+      const size_t i = lim.index(ix, iy);
+      lo[i] = g.logOdds(ix, iy);
+      seen[i] = g.seen(ix, iy);
+      const Eigen::Vector2d c = lim.cellCenter(ix, iy);
+      if (c.x() > 3.05 && c.x() < 3.6 && c.y() > 1.5 && c.y() < 2.5) {
+        seen[i] = 1;
+        lo[i] = -20;  // weakly free: state unknown
+      }
+    }
+  g.assign(lo, seen);
+  ASSERT_EQ(g.state(lim.cellX(3.3), lim.cellY(2.0)), CellState::kUnknown);
+  ASSERT_TRUE(g.seen(lim.cellX(3.3), lim.cellY(2.0)));
+  const PlanningMap p = planningOf(g);
+  EXPECT_TRUE(findFrontiers(g, p, {1.0, 2.0}, FrontierConfig{}).empty());  // off by default
+  FrontierConfig fc;
+  fc.fringe_clearance = 0.3;
+  const std::vector<Frontier> f = findFrontiers(g, p, {1.0, 2.0}, fc);
+  ASSERT_EQ(f.size(), 1u);
+  EXPECT_NEAR(f[0].centroid.x(), 3.025, 0.06);  // the free cells before the fringe
+  EXPECT_GT(f[0].gain, 50);                     // never-observed cells within reach
+  ASSERT_TRUE(f[0].has_goal);
+  FrontierExplorer explorer(fc, PlannerConfig{});
+  EXPECT_EQ(explorer.next(g, p, Pose2(1.0, 2.0, 0.0)).status, ExploreStatus::kGoal);
+}
+
+TEST(FrontiersTest, UncertainCellsClosedInByKnownOnesAreNoFrontier) {
+  // In the closed room, a patch seen but left uncertain (stereo's band beside a table): with
+  // nothing unobserved behind it, driving up to it shows nothing new.
+  OccupancyGrid g = roomWithDoors({});
+  const MapLimits& lim = g.limits();
+  std::vector<int16_t> lo(lim.size());
+  std::vector<uint8_t> seen(lim.size());
+  for (int iy = 0; iy < lim.height; ++iy)
+    for (int ix = 0; ix < lim.width; ++ix) {
+      const size_t i = lim.index(ix, iy);
+      lo[i] = g.logOdds(ix, iy);
+      seen[i] = g.seen(ix, iy);
+      const Eigen::Vector2d c = lim.cellCenter(ix, iy);
+      if (c.x() > 1.2 && c.x() < 1.8 && c.y() > 1.2 && c.y() < 1.8) lo[i] = 30;
+    }
+  g.assign(lo, seen);
+  ASSERT_EQ(g.state(lim.cellX(1.5), lim.cellY(1.5)), CellState::kUnknown);
+  FrontierConfig fc;
+  fc.fringe_clearance = 0.3;
+  EXPECT_TRUE(findFrontiers(g, planningOf(g), {1.0, 3.0}, fc).empty());
 }
 
 TEST(FrontiersTest, ARobotOnABlockedCellIsBlockedNotDone) {

@@ -137,6 +137,37 @@ TEST(PlanningMapTest, SegmentsCannotSlipBetweenDiagonalNeighbours) {
   EXPECT_FALSE(m.segmentFree({0.5, 0.5}, {6.5, 0.5}));              // leaves the map
 }
 
+TEST(PlanningMapTest, EveryPartOfAFreeSegmentIsFreeAndBothWaysAgree) {
+  // Ends exactly on cell boundaries (a robot's home at (1.3, 2.9) on a 5 cm grid) map to one
+  // cell by rounding. The walk once stepped over a boundary met at the very end of a segment:
+  // a segment ending on a cell corner next to a blocked cell was blocked while a longer one
+  // through the same corner was free, and the planner (whose path simplifier cuts checked
+  // segments into parts) returned a path with a blocked segment.
+  PlanningMapConfig c;
+  c.robot_radius = 1e-4;
+  c.margin = 0.0;
+  std::mt19937 rng(7);
+  std::uniform_int_distribution<int> cell(0, 11);
+  std::vector<std::string> rows(12, std::string(12, '.'));
+  for (int k = 0; k < 25; ++k) rows[cell(rng)][cell(rng)] = '#';
+  const PlanningMap m(parse(rows, 0.05), c);
+  std::uniform_int_distribution<int> lattice(0, 24);  // half-cell steps: centres and boundaries
+  std::uniform_real_distribution<double> fraction(0.0, 1.0);
+  int free_segments = 0;
+  for (int k = 0; k < 20000; ++k) {
+    const Eigen::Vector2d a(lattice(rng) * 0.025, lattice(rng) * 0.025);
+    const Eigen::Vector2d b(lattice(rng) * 0.025, lattice(rng) * 0.025);
+    const bool free = m.segmentFree(a, b);
+    ASSERT_EQ(free, m.segmentFree(b, a)) << a.transpose() << " -> " << b.transpose();
+    if (!free) continue;
+    ++free_segments;
+    const Eigen::Vector2d s = a + fraction(rng) * (b - a);
+    ASSERT_TRUE(m.segmentFree(s, b)) << s.transpose() << " -> " << b.transpose();
+    ASSERT_TRUE(m.segmentFree(a, s)) << a.transpose() << " -> " << s.transpose();
+  }
+  EXPECT_GT(free_segments, 1000);
+}
+
 TEST(PlanningMapTest, ValidateNamesTheField) {
   PlanningMapConfig c;
   c.robot_radius = -0.2;

@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "apps/run_world.h"
+#include "core/agent/mission.h"
 
 namespace coopmap {
 namespace {
@@ -38,6 +39,36 @@ TEST(ExploreScenarioTest, OneRobotExploresTheLabAndComesHome) {
       ++good;
   }
   EXPECT_GE(good, 3);
+}
+
+TEST(ExploreScenarioTest, TheBuildingsMissionSettingsApplyUnlessTheCommandLineSaysOtherwise) {
+  RunOptions o;
+  o.world_file = std::string(COOPMAP_SOURCE_DIR) + "/worlds/lab_corridor.yaml";
+  o.explore = true;
+  o.duration = 2.0;
+  RunResult r = runWorld(o);
+  ASSERT_TRUE(r.mission_settings.has_value());
+  EXPECT_EQ(r.mission_settings->first_sortie_budget_m, 10.0);  // worlds/lab_corridor.yaml
+  EXPECT_EQ(r.mission_settings->safety_distance, 0.45);
+  EXPECT_EQ(r.mission_settings->slow_distance, 1.0);
+  EXPECT_EQ(r.mission_settings->fringe_clearance, 0.3);
+  EXPECT_TRUE(r.mission_settings->retry_frontiers);
+  o.safety_distance = 0.6;
+  o.retry_frontiers = false;
+  r = runWorld(o);
+  EXPECT_EQ(r.mission_settings->safety_distance, 0.6);
+  EXPECT_FALSE(r.mission_settings->retry_frontiers);
+  EXPECT_EQ(r.mission_settings->slow_distance, 1.0);
+  // The lab says nothing: the defaults.
+  o = RunOptions{};
+  o.world_file = std::string(COOPMAP_SOURCE_DIR) + "/worlds/lab.yaml";
+  o.explore = true;
+  o.duration = 2.0;
+  r = runWorld(o);
+  ASSERT_TRUE(r.mission_settings.has_value());
+  EXPECT_EQ(r.mission_settings->safety_distance, MissionConfig{}.safety_distance);
+  EXPECT_EQ(r.mission_settings->first_sortie_budget_m, 0.0);
+  EXPECT_FALSE(r.mission_settings->retry_frontiers);
 }
 
 }  // namespace

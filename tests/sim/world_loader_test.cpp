@@ -83,6 +83,31 @@ TEST(WorldLoaderTest, MissionSaysWhatRunDoesByDefault) {
       << e;
 }
 
+TEST(WorldLoaderTest, MissionSettingsOfABuildingAreReadAndChecked) {
+  const World w = parseWorld(
+      "mission: {mode: explore, first_sortie_budget_m: 10, safety_distance: 0.45, "
+      "slow_distance: 1, fringe_clearance: 0.3, retry_frontiers: true}\n" +
+          minimal(),
+      "w.yaml");
+  EXPECT_EQ(w.mission, "explore");
+  EXPECT_EQ(w.exploration.first_sortie_budget_m, 10.0);
+  EXPECT_EQ(w.exploration.safety_distance, 0.45);
+  EXPECT_EQ(w.exploration.slow_distance, 1.0);
+  EXPECT_EQ(w.exploration.fringe_clearance, 0.3);
+  EXPECT_EQ(w.exploration.retry_frontiers, true);
+  EXPECT_FALSE(parseWorld(minimal(), "w.yaml").exploration.safety_distance.has_value());
+  const World building = loadWorld(kSrc + "/worlds/lab_corridor.yaml");
+  EXPECT_TRUE(building.exploration.retry_frontiers.value_or(false));
+  std::string e = errorOf("mission: {mode: explore, safety_distance: -1}\n" + minimal());
+  EXPECT_NE(e.find("w.yaml:1:43: mission.safety_distance: expected metres in [0.05, 5], got '-1'"),
+            std::string::npos)
+      << e;
+  e = errorOf("mission: {mode: explore, budget: 3}\n" + minimal());
+  EXPECT_NE(e.find("budget"), std::string::npos) << e;
+  e = errorOf("mission: {safety_distance: 0.4}\n" + minimal());
+  EXPECT_NE(e.find("mode"), std::string::npos) << e;
+}
+
 TEST(WorldLoaderTest, NegativeThicknessNamesLineAndField) {
   const std::string e = errorOf(
       replaceLine(minimal(), 6, "  - {from: [0, 0], to: [5, 0], thickness: -0.1, texture: a}"));
