@@ -81,7 +81,7 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   double first_sortie_budget = 0.0, safety_distance = 0.0, slow_distance = 0.0,
-         fringe_clearance = 0.0;
+         fringe_clearance = 0.0, goal_clearance = 0.0;
   bool retry_frontiers = false, no_retry_frontiers = false;
   cmd_run
       ->add_option("--first-sortie-budget", first_sortie_budget,
@@ -104,6 +104,11 @@ int main(int argc, char** argv) {
                    "With --explore: m; uncertain cells this far from obstacles, joined to unseen "
                    "ones, make frontiers when no other frontier has a goal (0: off) [default: "
                    "the world's, else 0]")
+      ->check(CLI::NonNegativeNumber);
+  cmd_run
+      ->add_option("--goal-clearance", goal_clearance,
+                   "With --explore: m; frontier goals this far from anything blocked are "
+                   "preferred (0: the nearest free cell) [default: the world's, else 0]")
       ->check(CLI::NonNegativeNumber);
   auto* retry_opt = cmd_run->add_flag(
       "--retry-frontiers", retry_frontiers,
@@ -524,6 +529,7 @@ int main(int argc, char** argv) {
       if (cmd_run->count("--safety-distance")) run.safety_distance = safety_distance;
       if (cmd_run->count("--slow-distance")) run.slow_distance = slow_distance;
       if (cmd_run->count("--fringe-clearance")) run.fringe_clearance = fringe_clearance;
+      if (cmd_run->count("--goal-clearance")) run.goal_clearance = goal_clearance;
       if (retry_frontiers) run.retry_frontiers = true;
       if (no_retry_frontiers) run.retry_frontiers = false;
       run.progress = !quiet;

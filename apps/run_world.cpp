@@ -112,7 +112,7 @@ void writeOutputs(const RunOptions& opt, const sim::World& world, const RunResul
     j.beginObject("mission_settings");
     j.value("first_sortie_budget_m", m->first_sortie_budget_m);
     j.value("safety_distance", m->safety_distance).value("slow_distance", m->slow_distance);
-    j.value("fringe_clearance", m->fringe_clearance);
+    j.value("fringe_clearance", m->fringe_clearance).value("goal_clearance", m->goal_clearance);
     j.value("retry_frontiers", m->retry_frontiers);
     j.endObject();
   }
@@ -254,12 +254,17 @@ RunResult runWorld(const RunOptions& opt) {
       mission.slow_distance = pick(opt.slow_distance, we.slow_distance, mission.slow_distance);
       mission.frontiers.fringe_clearance =
           pick(opt.fringe_clearance, we.fringe_clearance, mission.frontiers.fringe_clearance);
+      mission.frontiers.goal_clearance =
+          pick(opt.goal_clearance, we.goal_clearance, mission.frontiers.goal_clearance);
       mission.retry_frontiers =
           pick(opt.retry_frontiers, we.retry_frontiers, mission.retry_frontiers);
       mission.validate();
-      settings = RunResult::MissionSettings{
-          mission.first_budget_m, mission.safety_distance, mission.slow_distance,
-          mission.frontiers.fringe_clearance, mission.retry_frontiers};
+      settings = RunResult::MissionSettings{mission.first_budget_m,
+                                            mission.safety_distance,
+                                            mission.slow_distance,
+                                            mission.frontiers.fringe_clearance,
+                                            mission.frontiers.goal_clearance,
+                                            mission.retry_frontiers};
       mission.max_sorties = cooperative ? opt.max_sorties : 1;
       r.mission = std::make_unique<MissionAgent>(spec.start, mission);
       if (cooperative) {

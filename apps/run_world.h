@@ -48,6 +48,7 @@ struct RunOptions {
   std::optional<double> safety_distance;        // m: MissionConfig::safety_distance
   std::optional<double> slow_distance;          // m: MissionConfig::slow_distance (0: off)
   std::optional<double> fringe_clearance;       // m: FrontierConfig::fringe_clearance (0: off)
+  std::optional<double> goal_clearance;         // m: FrontierConfig::goal_clearance (0: off)
   std::optional<bool> retry_frontiers;          // MissionConfig::retry_frontiers
   double sortie_budget_s = 400.0;               // s: a robot stuck (wheels slipping) goes home too
   int max_sorties = 12;
@@ -162,7 +163,7 @@ struct RunResult {
   // The mission settings the run used (command line, else the world's, else defaults).
   struct MissionSettings {
     double first_sortie_budget_m = 0.0, safety_distance = 0.0, slow_distance = 0.0;
-    double fringe_clearance = 0.0;
+    double fringe_clearance = 0.0, goal_clearance = 0.0;
     bool retry_frontiers = false;
   };
   std::optional<MissionSettings> mission_settings;  // with --explore

@@ -21,6 +21,7 @@ void FrontierConfig::validate() const {
   if (max_plans < 1) bad("max_plans", "an integer >= 1", max_plans);
   if (!(claim_radius >= 0.0)) bad("claim_radius", "a number >= 0", claim_radius);
   if (!(fringe_clearance >= 0.0)) bad("fringe_clearance", "a number >= 0", fringe_clearance);
+  if (!(goal_clearance >= 0.0)) bad("goal_clearance", "a number >= 0", goal_clearance);
 }
 
 std::vector<Frontier> findFrontiers(const OccupancyGrid& grid, const PlanningMap& planning,
@@ -133,16 +134,24 @@ std::vector<Frontier> findFrontiers(const OccupancyGrid& grid, const PlanningMap
             ++f.gain;
       // Goal: the free cell, reachable from the robot, nearest to one of the frontier's cells
       // (nearest to the centroid among ties in distance bands of a cell).
+      // With goal_clearance, cells that far from anything blocked come first: a goal at the
+      // least clearance stands the robot a few cm from the edge of the unknown, which is where
+      // a wall the cameras cannot see (no texture) is.
       if (robot_region > 0) {
         const int s = static_cast<int>(std::ceil(config.goal_search_radius / lim.resolution));
         double best = 1e300;
+        bool best_clear = false;
         for (int jy = gy - s; jy <= gy + s; ++jy)
           for (int jx = gx - s; jx <= gx + s; ++jx) {
             if (planning.region(jx, jy) != robot_region) continue;
             const Eigen::Vector2d c = lim.cellCenter(jx, jy);
             const double d = (c - f.centroid).norm();
-            if (d <= config.goal_search_radius && d < best) {
+            if (d > config.goal_search_radius) continue;
+            const bool clear =
+                config.goal_clearance > 0.0 && planning.clearance(jx, jy) >= config.goal_clearance;
+            if ((clear && !best_clear) || (clear == best_clear && d < best)) {
               best = d;
+              best_clear = clear;
               f.goal = c;
               f.has_goal = true;
             }

@@ -32,6 +32,9 @@ struct FrontierConfig {
   // observed ones, count as unknown for frontiers (the fringe long stereo rays leave); 0:
   // only never-observed cells do.
   double fringe_clearance = 0.0;
+  // m: a goal this far from every blocked cell (centre to centre) is preferred to a nearer
+  // one with less; 0: the nearest free cell, whatever its clearance.
+  double goal_clearance = 0.0;
   void validate() const;  // throws std::invalid_argument naming the field
 };
 

@@ -178,6 +178,7 @@ struct World {
     std::optional<double> safety_distance;        // m: MissionConfig::safety_distance
     std::optional<double> slow_distance;          // m: MissionConfig::slow_distance
     std::optional<double> fringe_clearance;       // m: FrontierConfig::fringe_clearance
+    std::optional<double> goal_clearance;         // m: FrontierConfig::goal_clearance
     std::optional<bool> retry_frontiers;          // MissionConfig::retry_frontiers
   } exploration;
 

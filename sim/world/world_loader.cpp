@@ -200,7 +200,8 @@ World parseWorld(const std::string& text, const std::string& file) {
     if (w.mission != "routes" && w.mission != "explore") mode.fail("'routes' or 'explore'");
     if (mission->isMap()) {
       mission->allowOnly({"mode", "sortie_budget_m", "first_sortie_budget_m", "safety_distance",
-                          "slow_distance", "fringe_clearance", "retry_frontiers"});
+                          "slow_distance", "fringe_clearance", "goal_clearance",
+                          "retry_frontiers"});
       World::Exploration& e = w.exploration;
       auto metres = [&](const char* key, double lo, double hi, const char* what,
                         std::optional<double>& out) {
@@ -212,6 +213,7 @@ World parseWorld(const std::string& text, const std::string& file) {
       metres("safety_distance", 0.05, 5.0, "metres in [0.05, 5]", e.safety_distance);
       metres("slow_distance", 0.0, 10.0, "metres in [0, 10] (0: never slow down)", e.slow_distance);
       metres("fringe_clearance", 0.0, 5.0, "metres in [0, 5] (0: off)", e.fringe_clearance);
+      metres("goal_clearance", 0.0, 5.0, "metres in [0, 5] (0: off)", e.goal_clearance);
       if (mission->has("retry_frontiers"))
         e.retry_frontiers = (*mission)["retry_frontiers"].asBool();
     }

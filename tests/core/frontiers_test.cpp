@@ -164,6 +164,31 @@ TEST(FrontiersTest, UncertainCellsClosedInByKnownOnesAreNoFrontier) {
   EXPECT_TRUE(findFrontiers(g, planningOf(g), {1.0, 3.0}, fc).empty());
 }
 
+TEST(FrontiersTest, GoalsStandOffFromTheUnknownWhenAsked) {
+  // The nearest free cell to a frontier stands the robot a few cm from the edge of the
+  // unknown (where an unseen, textureless wall may be); with goal_clearance the goal keeps
+  // that much from every blocked cell, still within goal_search_radius.
+  const OccupancyGrid g = roomWithDoors({{1.0, 3.0}});
+  const PlanningMap p = planningOf(g);
+  const MapLimits& lim = g.limits();
+  auto clearanceAt = [&](const Eigen::Vector2d& c) {
+    return p.clearance(lim.cellX(c.x()), lim.cellY(c.y()));
+  };
+  const std::vector<Frontier> near = findFrontiers(g, p, {1.0, 2.0}, FrontierConfig{});
+  ASSERT_EQ(near.size(), 1u);
+  ASSERT_TRUE(near[0].has_goal);
+  EXPECT_LT(clearanceAt(near[0].goal), 0.35);
+  FrontierConfig fc;
+  fc.goal_clearance = 0.6;
+  const std::vector<Frontier> off = findFrontiers(g, p, {1.0, 2.0}, fc);
+  ASSERT_EQ(off.size(), 1u);
+  ASSERT_TRUE(off[0].has_goal);
+  EXPECT_GE(clearanceAt(off[0].goal), 0.6);
+  EXPECT_LE((off[0].goal - off[0].centroid).norm(), fc.goal_search_radius);
+  fc.goal_clearance = -1.0;
+  EXPECT_THROW(fc.validate(), std::invalid_argument);
+}
+
 TEST(FrontiersTest, ARobotOnABlockedCellIsBlockedNotDone) {
   // Against the west wall (inside its inflation) nothing can be planned: that is not the
   // end of exploration, the doorway is still there.

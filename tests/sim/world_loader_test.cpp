@@ -86,7 +86,7 @@ TEST(WorldLoaderTest, MissionSaysWhatRunDoesByDefault) {
 TEST(WorldLoaderTest, MissionSettingsOfABuildingAreReadAndChecked) {
   const World w = parseWorld(
       "mission: {mode: explore, first_sortie_budget_m: 10, safety_distance: 0.45, "
-      "slow_distance: 1, fringe_clearance: 0.3, retry_frontiers: true}\n" +
+      "slow_distance: 1, fringe_clearance: 0.3, goal_clearance: 0.4, retry_frontiers: true}\n" +
           minimal(),
       "w.yaml");
   EXPECT_EQ(w.mission, "explore");
@@ -94,6 +94,7 @@ TEST(WorldLoaderTest, MissionSettingsOfABuildingAreReadAndChecked) {
   EXPECT_EQ(w.exploration.safety_distance, 0.45);
   EXPECT_EQ(w.exploration.slow_distance, 1.0);
   EXPECT_EQ(w.exploration.fringe_clearance, 0.3);
+  EXPECT_EQ(w.exploration.goal_clearance, 0.4);
   EXPECT_EQ(w.exploration.retry_frontiers, true);
   EXPECT_FALSE(parseWorld(minimal(), "w.yaml").exploration.safety_distance.has_value());
   const World building = loadWorld(kSrc + "/worlds/lab_corridor.yaml");
