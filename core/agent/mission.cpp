@@ -51,47 +51,30 @@ void MissionConfig::validate() const {
   positive("look_from_m", look_from_m);
   positive("bump_radius", bump_radius);
   positive("max_home_detour", max_home_detour);
-  if (!(slow_distance >= 0.0))
-    throw std::invalid_argument(
-        "mission config: field 'slow_distance': expected a number >= 0 (0: off), got " +
-        std::to_string(slow_distance));
-  if (!(slow_fraction > 0.0 && slow_fraction <= 1.0))
-    throw std::invalid_argument(
-        "mission config: field 'slow_fraction': expected a number in (0, 1], got " +
-        std::to_string(slow_fraction));
-  if (!(first_budget_m >= 0.0))
-    throw std::invalid_argument(
-        "mission config: field 'first_budget_m': expected a number >= 0 (0: budget_m), got " +
-        std::to_string(first_budget_m));
-  if (!(bump_width >= 0.0))
-    throw std::invalid_argument("mission config: field 'bump_width': expected a number >= 0, got " +
-                                std::to_string(bump_width));
-  if (!(claimed_return_factor >= 0.0 && claimed_return_factor <= 1.0))
-    throw std::invalid_argument(
-        "mission config: field 'claimed_return_factor': expected a number in [0, 1], got " +
-        std::to_string(claimed_return_factor));
-  if (!(min_sortie_m >= 0.0))
-    throw std::invalid_argument(
-        "mission config: field 'min_sortie_m': expected a number >= 0, got " +
-        std::to_string(min_sortie_m));
-  if (firm_log_odds < 1)
-    throw std::invalid_argument("mission config: field 'firm_log_odds': expected at least 1, got " +
-                                std::to_string(firm_log_odds));
-  if (max_sortie_bumps < 1)
-    throw std::invalid_argument(
-        "mission config: field 'max_sortie_bumps': expected at least 1, got " +
-        std::to_string(max_sortie_bumps));
-  if (max_return_bumps < 1)
-    throw std::invalid_argument(
-        "mission config: field 'max_return_bumps': expected at least 1, got " +
-        std::to_string(max_return_bumps));
-  if (max_sorties < 1)
-    throw std::invalid_argument("mission config: field 'max_sorties': expected at least 1, got " +
-                                std::to_string(max_sorties));
-  if (!(look_wait_s >= 0.0))
-    throw std::invalid_argument(
-        "mission config: field 'look_wait_s': expected a number >= 0, got " +
-        std::to_string(look_wait_s));
+  // field, whether its value is good, what is expected, the value
+  auto require = [](const char* field, bool ok, const char* expected, double v) {
+    if (!ok)
+      throw std::invalid_argument(std::string("mission config: field '") + field + "': expected " +
+                                  expected + ", got " + std::to_string(v));
+  };
+  require("slow_distance", slow_distance >= 0.0, "a number >= 0 (0: off)", slow_distance);
+  require("slow_fraction", slow_fraction > 0.0 && slow_fraction <= 1.0, "a number in (0, 1]",
+          slow_fraction);
+  require("first_budget_m", first_budget_m >= 0.0, "a number >= 0 (0: budget_m)", first_budget_m);
+  require("bump_width", bump_width >= 0.0, "a number >= 0", bump_width);
+  require("claimed_return_factor", claimed_return_factor >= 0.0 && claimed_return_factor <= 1.0,
+          "a number in [0, 1]", claimed_return_factor);
+  require("min_sortie_m", min_sortie_m >= 0.0, "a number >= 0", min_sortie_m);
+  require("look_wait_s", look_wait_s >= 0.0, "a number >= 0", look_wait_s);
+  auto atLeastOne = [](const char* field, int v) {
+    if (v < 1)
+      throw std::invalid_argument(std::string("mission config: field '") + field +
+                                  "': expected at least 1, got " + std::to_string(v));
+  };
+  atLeastOne("firm_log_odds", firm_log_odds);
+  atLeastOne("max_sortie_bumps", max_sortie_bumps);
+  atLeastOne("max_return_bumps", max_return_bumps);
+  atLeastOne("max_sorties", max_sorties);
   frontiers.validate();
   planner.validate();
   planning.validate();

@@ -24,6 +24,66 @@ void FrontierConfig::validate() const {
   if (!(goal_clearance >= 0.0)) bad("goal_clearance", "a number >= 0", goal_clearance);
 }
 
+namespace {
+
+// Open unknown: never observed, or observed too little to tell free from occupied, at least
+// `clearance` (m) from obstacles and joined (4-connected, through such cells) to never-observed
+// ones. The far ends of long stereo rays leave a fringe of the latter between free and
+// unobserved space, which once hid whole corridors from the explorer (no free cell touched an
+// unobserved one). Uncertain cells beside obstacles (stereo's bands along walls and
+// furniture) are left out: driving up to them shows little and bumps into things. With
+// clearance 0, only never-observed cells.
+GridU8 openUnknown(const OccupancyGrid& grid, double clearance) {
+  const MapLimits& lim = grid.limits();
+  const int w = lim.width, h = lim.height;
+  GridU8 open(lim, 0);
+  for (int iy = 0; iy < h; ++iy)
+    for (int ix = 0; ix < w; ++ix) open.at(ix, iy) = !grid.seen(ix, iy);
+  const int keep = static_cast<int>(std::ceil(clearance / lim.resolution));
+  if (keep <= 0) return open;
+  GridU8 near_obstacle(lim, 0);
+  std::vector<std::pair<int, int>> ring, next;
+  for (int iy = 0; iy < h; ++iy)
+    for (int ix = 0; ix < w; ++ix)
+      if (grid.state(ix, iy) == CellState::kOccupied) {
+        near_obstacle.at(ix, iy) = 1;
+        ring.push_back({ix, iy});
+      }
+  for (int step = 0; step < keep && !ring.empty(); ++step) {
+    next.clear();
+    for (const auto& [x, y] : ring)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int jx = x + dx, jy = y + dy;
+          if (lim.contains(jx, jy) && !near_obstacle.at(jx, jy)) {
+            near_obstacle.at(jx, jy) = 1;
+            next.push_back({jx, jy});
+          }
+        }
+    ring.swap(next);
+  }
+  std::vector<std::pair<int, int>> todo;
+  for (int iy = 0; iy < h; ++iy)
+    for (int ix = 0; ix < w; ++ix)
+      if (open.at(ix, iy)) todo.push_back({ix, iy});
+  while (!todo.empty()) {
+    const auto [x, y] = todo.back();
+    todo.pop_back();
+    const int n[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
+    for (const auto& d : n) {
+      const int jx = x + d[0], jy = y + d[1];
+      if (lim.contains(jx, jy) && !open.at(jx, jy) && !near_obstacle.at(jx, jy) &&
+          grid.state(jx, jy) == CellState::kUnknown) {
+        open.at(jx, jy) = 1;
+        todo.push_back({jx, jy});
+      }
+    }
+  }
+  return open;
+}
+
+}  // namespace
+
 std::vector<Frontier> findFrontiers(const OccupancyGrid& grid, const PlanningMap& planning,
                                     const Eigen::Vector2d& robot, const FrontierConfig& config) {
   config.validate();
@@ -31,59 +91,7 @@ std::vector<Frontier> findFrontiers(const OccupancyGrid& grid, const PlanningMap
   if (planning.limits().width != lim.width || planning.limits().height != lim.height)
     throw std::invalid_argument("findFrontiers: the planning map's limits differ from the grid's");
   const int w = lim.width, h = lim.height;
-  // Open unknown: never observed, or observed too little to tell free from occupied, away
-  // from obstacles and joined (4-connected, through such cells) to never-observed ones. The
-  // far ends of long stereo rays leave a fringe of the latter between free and unobserved
-  // space, which once hid whole corridors from the explorer (no free cell touched an
-  // unobserved one). Uncertain cells beside obstacles (stereo's bands along walls and
-  // furniture) are left out: driving up to them shows little and bumps into things.
-  const int keep = static_cast<int>(std::ceil(config.fringe_clearance / lim.resolution));
-  GridU8 near_obstacle(lim, 0);
-  {
-    std::vector<std::pair<int, int>> ring, next;
-    for (int iy = 0; iy < h; ++iy)
-      for (int ix = 0; ix < w; ++ix)
-        if (grid.state(ix, iy) == CellState::kOccupied) {
-          near_obstacle.at(ix, iy) = 1;
-          ring.push_back({ix, iy});
-        }
-    for (int step = 0; step < keep && !ring.empty(); ++step) {
-      next.clear();
-      for (const auto& [x, y] : ring)
-        for (int dy = -1; dy <= 1; ++dy)
-          for (int dx = -1; dx <= 1; ++dx) {
-            const int jx = x + dx, jy = y + dy;
-            if (lim.contains(jx, jy) && !near_obstacle.at(jx, jy)) {
-              near_obstacle.at(jx, jy) = 1;
-              next.push_back({jx, jy});
-            }
-          }
-      ring.swap(next);
-    }
-  }
-  GridU8 open(lim, 0);
-  {
-    std::vector<std::pair<int, int>> todo;
-    for (int iy = 0; iy < h; ++iy)
-      for (int ix = 0; ix < w; ++ix)
-        if (!grid.seen(ix, iy)) {
-          open.at(ix, iy) = 1;
-          todo.push_back({ix, iy});
-        }
-    while (keep > 0 && !todo.empty()) {
-      const auto [x, y] = todo.back();
-      todo.pop_back();
-      const int n[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
-      for (const auto& d : n) {
-        const int jx = x + d[0], jy = y + d[1];
-        if (lim.contains(jx, jy) && !open.at(jx, jy) && !near_obstacle.at(jx, jy) &&
-            grid.state(jx, jy) == CellState::kUnknown) {
-          open.at(jx, jy) = 1;
-          todo.push_back({jx, jy});
-        }
-      }
-    }
-  }
+  const GridU8 open = openUnknown(grid, config.fringe_clearance);
   auto unknown = [&](int ix, int iy) { return open.at(ix, iy) != 0; };
   auto isFrontier = [&](int ix, int iy) {
     if (grid.state(ix, iy) != CellState::kFree) return false;

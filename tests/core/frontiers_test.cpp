@@ -32,6 +32,23 @@ OccupancyGrid roomWithDoors(const std::vector<std::pair<double, double>>& doors)
 
 PlanningMap planningOf(const OccupancyGrid& g) { return PlanningMap(g, PlanningMapConfig{}); }
 
+// `g` with the cells whose centres satisfy `where` observed, at log-odds `lo`.
+template <typename Where>
+OccupancyGrid observedWeakly(OccupancyGrid g, Where where, int16_t lo) {
+  const MapLimits& lim = g.limits();
+  std::vector<int16_t> log_odds(lim.size());
+  std::vector<uint8_t> seen(lim.size());
+  for (int iy = 0; iy < lim.height; ++iy)
+    for (int ix = 0; ix < lim.width; ++ix) {
+      const size_t i = lim.index(ix, iy);
+      const bool here = where(lim.cellCenter(ix, iy));
+      log_odds[i] = here ? lo : g.logOdds(ix, iy);
+      seen[i] = here || g.seen(ix, iy);
+    }
+  g.assign(log_odds, seen);
+  return g;
+}
+
 TEST(FrontiersTest, TheDoorwayIsTheFrontierAndItsGoalIsReachable) {
   const OccupancyGrid g = roomWithDoors({{1.5, 2.5}});
   const PlanningMap p = planningOf(g);
@@ -111,22 +128,13 @@ TEST(FrontiersTest, AFringeObservedTooLittleToTellDoesNotHideTheUnknownBeyond) {
   // observed, its log-odds too weak for free. Beyond it nothing has been seen. The explorer
   // once found no frontier here (no free cell touched a never-observed one) and called the
   // exploration complete with a whole corridor unseen.
-  OccupancyGrid g = roomWithDoors({{1.5, 2.5}});
+  const OccupancyGrid g = observedWeakly(
+      roomWithDoors({{1.5, 2.5}}),
+      [](const Eigen::Vector2d& c) {
+        return c.x() > 3.05 && c.x() < 3.6 && c.y() > 1.5 && c.y() < 2.5;
+      },
+      -20);  // weakly free: state unknown
   const MapLimits& lim = g.limits();
-  std::vector<int16_t> lo(lim.size());
-  std::vector<uint8_t> seen(lim.size());
-  for (int iy = 0; iy < lim.height; ++iy)
-    for (int ix = 0; ix < lim.width; ++ix) {
-      const size_t i = lim.index(ix, iy);
-      lo[i] = g.logOdds(ix, iy);
-      seen[i] = g.seen(ix, iy);
-      const Eigen::Vector2d c = lim.cellCenter(ix, iy);
-      if (c.x() > 3.05 && c.x() < 3.6 && c.y() > 1.5 && c.y() < 2.5) {
-        seen[i] = 1;
-        lo[i] = -20;  // weakly free: state unknown
-      }
-    }
-  g.assign(lo, seen);
   ASSERT_EQ(g.state(lim.cellX(3.3), lim.cellY(2.0)), CellState::kUnknown);
   ASSERT_TRUE(g.seen(lim.cellX(3.3), lim.cellY(2.0)));
   const PlanningMap p = planningOf(g);
@@ -145,19 +153,13 @@ TEST(FrontiersTest, AFringeObservedTooLittleToTellDoesNotHideTheUnknownBeyond) {
 TEST(FrontiersTest, UncertainCellsClosedInByKnownOnesAreNoFrontier) {
   // In the closed room, a patch seen but left uncertain (stereo's band beside a table): with
   // nothing unobserved behind it, driving up to it shows nothing new.
-  OccupancyGrid g = roomWithDoors({});
+  const OccupancyGrid g = observedWeakly(
+      roomWithDoors({}),
+      [](const Eigen::Vector2d& c) {
+        return c.x() > 1.2 && c.x() < 1.8 && c.y() > 1.2 && c.y() < 1.8;
+      },
+      30);  // weakly occupied: state unknown
   const MapLimits& lim = g.limits();
-  std::vector<int16_t> lo(lim.size());
-  std::vector<uint8_t> seen(lim.size());
-  for (int iy = 0; iy < lim.height; ++iy)
-    for (int ix = 0; ix < lim.width; ++ix) {
-      const size_t i = lim.index(ix, iy);
-      lo[i] = g.logOdds(ix, iy);
-      seen[i] = g.seen(ix, iy);
-      const Eigen::Vector2d c = lim.cellCenter(ix, iy);
-      if (c.x() > 1.2 && c.x() < 1.8 && c.y() > 1.2 && c.y() < 1.8) lo[i] = 30;
-    }
-  g.assign(lo, seen);
   ASSERT_EQ(g.state(lim.cellX(1.5), lim.cellY(1.5)), CellState::kUnknown);
   FrontierConfig fc;
   fc.fringe_clearance = 0.3;

@@ -16,21 +16,26 @@
 namespace coopmap {
 namespace {
 
+// A radial map of 40 columns over +-60 degrees, free up to `range` (m) in every one.
+RadialMap freeAhead(double range) {
+  RadialMap scan;
+  scan.max_range = range;
+  for (int c = 0; c < 40; ++c) {
+    RadialReading r;
+    r.bearing = (c - 19.5) / 39.0 * (M_PI / 3.0);
+    r.range = range;
+    r.kind = RadialKind::kBeyond;
+    scan.readings.push_back(r);
+  }
+  return scan;
+}
+
 // Free space 3.5 m ahead of `at` over +-60 degrees (a look that way); unknown beyond.
 OccupancyGrid lookedAround(const Pose2& at) {
   OccupancyGrid map(MapLimits::covering({0.0, 0.0}, {8.0, 6.0}, 0.05), OccupancyConfig{});
-  for (int k = -3; k <= 3; ++k) {
-    RadialMap scan;
-    scan.max_range = 3.5;
-    for (int c = 0; c < 40; ++c) {
-      RadialReading r;
-      r.bearing = (c - 19.5) / 39.0 * (M_PI / 3.0);
-      r.range = 3.5;
-      r.kind = RadialKind::kBeyond;
-      scan.readings.push_back(r);
-    }
+  const RadialMap scan = freeAhead(3.5);
+  for (int k = -3; k <= 3; ++k)
     for (int i = 0; i < 3; ++i) map.insert(scan, Pose2(at.x, at.y, at.theta + k * M_PI / 18.0));
-  }
   return map;
 }
 
@@ -229,19 +234,12 @@ TEST(MissionTest, FrontiersLeftButOutOfReachThisSortieAreTriedAgainNextSortie) {
 
 // A radial map with one obstacle straight ahead at `range` (m), or none.
 RadialMap aheadAt(std::optional<double> range) {
-  RadialMap scan;
-  scan.max_range = 4.0;
-  for (int c = 0; c < 40; ++c) {
-    RadialReading r;
-    r.bearing = (c - 19.5) / 39.0 * (M_PI / 3.0);
-    r.range = 4.0;
-    r.kind = RadialKind::kBeyond;
+  RadialMap scan = freeAhead(4.0);
+  for (RadialReading& r : scan.readings)
     if (range && std::abs(r.bearing) < 0.1) {
       r.range = *range;
       r.kind = RadialKind::kHit;
     }
-    scan.readings.push_back(r);
-  }
   return scan;
 }
 
