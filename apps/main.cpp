@@ -81,7 +81,7 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   double first_sortie_budget = 0.0, safety_distance = 0.0, slow_distance = 0.0,
-         fringe_clearance = 0.0, goal_clearance = 0.0;
+         fringe_clearance = 0.0, goal_clearance = 0.0, floor_edge_depth = 0.0;
   bool retry_frontiers = false, no_retry_frontiers = false;
   cmd_run
       ->add_option("--first-sortie-budget", first_sortie_budget,
@@ -105,6 +105,12 @@ int main(int argc, char** argv) {
                    "ones, make frontiers when no other frontier has a goal (0: off) [default: "
                    "the world's, else 0]")
       ->check(CLI::NonNegativeNumber);
+  cmd_run
+      ->add_option("--floor-edge-depth", floor_edge_depth,
+                   "m; a camera column that matches nothing but sees the floor end nearer than "
+                   "this depth has met a textureless wall there (0: off) [default: the world's, "
+                   "else 0]")
+      ->check(CLI::Range(0.0, 5.0));
   cmd_run
       ->add_option("--goal-clearance", goal_clearance,
                    "With --explore: m; frontier goals this far from anything blocked are "
@@ -151,6 +157,17 @@ int main(int argc, char** argv) {
                    "aligned to the shared map, to the sortie's other half, both, or none")
       ->capture_default_str()
       ->check(CLI::IsMember({"both", "shared", "self", "none"}));
+  bool shaped_closures = false, round_closures = false;
+  auto* shaped_opt = cmd_run->add_flag(
+      "--shaped-closures", shaped_closures,
+      "With --explore and closures: a closure pins its position only in the directions its "
+      "alignment pins down (along a straight corridor's walls it is left loose) [default: the "
+      "world's, else off]");
+  cmd_run
+      ->add_flag("--round-closures", round_closures,
+                 "With --explore and closures: each closure pins its position in every "
+                 "direction alike")
+      ->excludes(shaped_opt);
   bool no_coordination = false;
   cmd_run->add_flag("--no-coordination", no_coordination,
                     "With --explore and several robots: each explores as if alone (default: "
@@ -522,6 +539,8 @@ int main(int argc, char** argv) {
       run.coordinate = !no_coordination;
       run.cooperation.closures = closures == "both" || closures == "shared";
       run.cooperation.self_closures = closures == "both" || closures == "self";
+      if (shaped_closures) run.shaped_closures = true;
+      if (round_closures) run.shaped_closures = false;
       if (robots > 0) run.robots = robots;
       if (!odometry.empty()) run.odometry = odometry;
       if (sensing_rate > 0.0) run.sensing_rate = sensing_rate;
@@ -529,6 +548,7 @@ int main(int argc, char** argv) {
       if (cmd_run->count("--safety-distance")) run.safety_distance = safety_distance;
       if (cmd_run->count("--slow-distance")) run.slow_distance = slow_distance;
       if (cmd_run->count("--fringe-clearance")) run.fringe_clearance = fringe_clearance;
+      if (cmd_run->count("--floor-edge-depth")) run.floor_edge_depth = floor_edge_depth;
       if (cmd_run->count("--goal-clearance")) run.goal_clearance = goal_clearance;
       if (retry_frontiers) run.retry_frontiers = true;
       if (no_retry_frontiers) run.retry_frontiers = false;

@@ -113,7 +113,8 @@ void writeOutputs(const RunOptions& opt, const sim::World& world, const RunResul
     j.value("first_sortie_budget_m", m->first_sortie_budget_m);
     j.value("safety_distance", m->safety_distance).value("slow_distance", m->slow_distance);
     j.value("fringe_clearance", m->fringe_clearance).value("goal_clearance", m->goal_clearance);
-    j.value("retry_frontiers", m->retry_frontiers);
+    j.value("retry_frontiers", m->retry_frontiers).value("floor_edge_depth", m->floor_edge_depth);
+    j.value("shaped_closures", m->shaped_closures);
     j.endObject();
   }
   j.value("sim_time_s", result.sim_time_s).value("wall_time_s", result.wall_time_s);
@@ -231,7 +232,12 @@ RunResult runWorld(const RunOptions& opt) {
     RobotRun r;
     r.driver = std::make_unique<SimRobot>(sim, index);
     r.odo = r.driver->odometry();  // teammates read it before this robot's first step
-    r.mapper = std::make_unique<Mapper>(model.description, limits, MapperConfig{});
+    MapperConfig mapper_config;
+    mapper_config.radial.floor_edge_depth = opt.floor_edge_depth ? *opt.floor_edge_depth
+                                            : world.exploration.floor_edge_depth
+                                                ? *world.exploration.floor_edge_depth
+                                                : mapper_config.radial.floor_edge_depth;
+    r.mapper = std::make_unique<Mapper>(model.description, limits, mapper_config);
     r.mapper_description = model.description;
     r.mapper->setRobotName(spec.name);
     r.follower = std::make_unique<RouteFollower>(spec.route, RouteConfig{});
@@ -259,17 +265,22 @@ RunResult runWorld(const RunOptions& opt) {
       mission.retry_frontiers =
           pick(opt.retry_frontiers, we.retry_frontiers, mission.retry_frontiers);
       mission.validate();
-      settings = RunResult::MissionSettings{mission.first_budget_m,
-                                            mission.safety_distance,
-                                            mission.slow_distance,
-                                            mission.frontiers.fringe_clearance,
-                                            mission.frontiers.goal_clearance,
-                                            mission.retry_frontiers};
+      settings = RunResult::MissionSettings{
+          mission.first_budget_m,
+          mission.safety_distance,
+          mission.slow_distance,
+          mission.frontiers.fringe_clearance,
+          mission.frontiers.goal_clearance,
+          mission.retry_frontiers,
+          mapper_config.radial.floor_edge_depth,
+          pick(opt.shaped_closures, we.shaped_closures, opt.cooperation.closure_shape)};
       mission.max_sorties = cooperative ? opt.max_sorties : 1;
       r.mission = std::make_unique<MissionAgent>(spec.start, mission);
       if (cooperative) {
+        CooperationConfig cooperation = opt.cooperation;
+        cooperation.closure_shape = settings->shaped_closures;
         r.coop = std::make_unique<HomeBaseCooperation>(
-            spec.name, nominalHomeBase(world), world.home_base.arm_length, &*live, opt.cooperation);
+            spec.name, nominalHomeBase(world), world.home_base.arm_length, &*live, cooperation);
         r.calibrate = opt.calibrate_odometry;
       }
     }

@@ -50,6 +50,8 @@ struct RunOptions {
   std::optional<double> fringe_clearance;       // m: FrontierConfig::fringe_clearance (0: off)
   std::optional<double> goal_clearance;         // m: FrontierConfig::goal_clearance (0: off)
   std::optional<bool> retry_frontiers;          // MissionConfig::retry_frontiers
+  std::optional<double> floor_edge_depth;       // m: RadialMapConfig::floor_edge_depth (0: off)
+  std::optional<bool> shaped_closures;          // CooperationConfig::closure_shape
   double sortie_budget_s = 400.0;               // s: a robot stuck (wheels slipping) goes home too
   int max_sorties = 12;
   // A robot whose first fix at the end of a sortie puts it farther than this (m) from its
@@ -165,6 +167,8 @@ struct RunResult {
     double first_sortie_budget_m = 0.0, safety_distance = 0.0, slow_distance = 0.0;
     double fringe_clearance = 0.0, goal_clearance = 0.0;
     bool retry_frontiers = false;
+    double floor_edge_depth = 0.0;
+    bool shaped_closures = false;
   };
   std::optional<MissionSettings> mission_settings;  // with --explore
   std::vector<TimelineSample> timeline;

@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include <Eigen/Eigenvalues>
+
 namespace coopmap {
 
 namespace {
@@ -64,6 +66,11 @@ void CooperationConfig::validate() const {
     throw std::invalid_argument(
         "cooperation config: fields 'closure_max_m', 'closure_max_rad', 'closure_sigma_xy', "
         "'closure_sigma_theta': expected positive numbers");
+  if (!(closure_max_sigma_m >= closure_sigma_xy))
+    throw std::invalid_argument(
+        "cooperation config: field 'closure_max_sigma_m': expected a number >= closure_sigma_xy "
+        "(" +
+        std::to_string(closure_sigma_xy) + "), got " + std::to_string(closure_max_sigma_m));
 }
 
 HomeBaseCooperation::HomeBaseCooperation(std::string robot, const HomeBase& nominal,
@@ -248,6 +255,22 @@ SortieReport HomeBaseCooperation::endSortie(const TraverseLog& sortie,
   return done();
 }
 
+Eigen::Matrix2d HomeBaseCooperation::closureInformation(const AlignmentResult& a,
+                                                        const Eigen::Vector2d& at) const {
+  // The alignment's own information is far too confident (its points' errors are not
+  // independent); only its shape is used: the strongest direction gets closure_sigma_xy.
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(positionInformation(a, at));
+  const Eigen::Vector2d lambda = eig.eigenvalues();  // ascending
+  const double strong = 1.0 / (config_.closure_sigma_xy * config_.closure_sigma_xy);
+  if (!(lambda(1) > 0.0)) return Eigen::Matrix2d::Identity() * strong;
+  const double ratio = std::max(lambda(0), 0.0) / lambda(1);
+  const double floor = std::pow(config_.closure_sigma_xy / config_.closure_max_sigma_m, 2);
+  const Eigen::Vector2d weak_dir = eig.eigenvectors().col(0),
+                        strong_dir = eig.eigenvectors().col(1);
+  return strong * (strong_dir * strong_dir.transpose() +
+                   std::max(ratio, floor) * weak_dir * weak_dir.transpose());
+}
+
 std::vector<PoseObservation> HomeBaseCooperation::closuresAgainst(
     const TraverseLog& sortie, const std::vector<Pose2>& corrected, const ScanAligner& aligner,
     size_t from, size_t to) const {
@@ -265,6 +288,7 @@ std::vector<PoseObservation> HomeBaseCooperation::closuresAgainst(
     o.pose = a.correction * corrected[o.entry];
     o.sigma_xy = config_.closure_sigma_xy;
     o.sigma_theta = config_.closure_sigma_theta;
+    if (config_.closure_shape) o.xy_information = closureInformation(a, o.pose.translation());
     out.push_back(o);
   }
   return out;

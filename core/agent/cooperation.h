@@ -45,6 +45,14 @@ struct CooperationConfig {
   double closure_max_rad = 0.1;
   double closure_sigma_xy = 0.05;     // m, 1-sigma of a closure
   double closure_sigma_theta = 0.02;  // rad
+  // Shaped closures: a closure constrains a position only in the directions its alignment
+  // pins down; along the weak direction the sigma grows as sqrt(strong / weak information),
+  // up to closure_max_sigma_m. Round (off), every closure pins the position in all directions
+  // alike: in a straight corridor, where an alignment can slide along the walls, that moved
+  // whole stretches. Off by default: on the lab, whose alignments see corners, it measured
+  // no better; the building turns it on (README).
+  bool closure_shape = false;
+  double closure_max_sigma_m = 5.0;
   // Closures within the sortie too (beyond the paper): stretches of each half aligned to
   // the other half's map, leaving self_closure_gap entries out either side of the middle.
   // On by default: with drifting odometry the maps are as good as without, and the fixes
@@ -126,6 +134,8 @@ class HomeBaseCooperation {
   Located locateSortie(const TraverseLog& sortie) const;
   // Closures of the corrected sortie's stretches within entries [from, to) against a map
   // (the shared map as it is now, or the other half of the sortie).
+  // A closure's position information (map frame) from its alignment's, at `at`.
+  Eigen::Matrix2d closureInformation(const AlignmentResult& a, const Eigen::Vector2d& at) const;
   std::vector<PoseObservation> closuresAgainst(const TraverseLog& sortie,
                                                const std::vector<Pose2>& corrected,
                                                const ScanAligner& aligner, size_t from,

@@ -11,6 +11,9 @@
 #include <cmath>
 #include <stdexcept>
 
+#include <Eigen/Cholesky>
+#include <Eigen/Geometry>
+
 namespace coopmap {
 
 namespace {
@@ -124,18 +127,34 @@ struct StepResidual {
   double sxy, sth;
 };
 
+// A pose observed: position residual whitened by `sqrt_info` (U with U^T U the position's
+// information), heading by its sigma.
 struct PoseResidual {
-  PoseResidual(const Pose2& target, double sxy, double sth) : target(target), sxy(sxy), sth(sth) {}
+  PoseResidual(const Pose2& target, const Eigen::Matrix2d& sqrt_info, double sth)
+      : target(target), sqrt_info(sqrt_info), sth(sth) {}
+  PoseResidual(const Pose2& target, double sxy, double sth)
+      : PoseResidual(target, Eigen::Matrix2d::Identity() / sxy, sth) {}
   template <typename T>
   bool operator()(const T* p, T* r) const {
-    r[0] = (p[0] - T(target.x)) / T(sxy);
-    r[1] = (p[1] - T(target.y)) / T(sxy);
+    const T dx = p[0] - T(target.x), dy = p[1] - T(target.y);
+    r[0] = T(sqrt_info(0, 0)) * dx + T(sqrt_info(0, 1)) * dy;
+    r[1] = T(sqrt_info(1, 0)) * dx + T(sqrt_info(1, 1)) * dy;
     r[2] = (p[2] - T(target.theta)) / T(sth);
     return true;
   }
   Pose2 target;
-  double sxy, sth;
+  Eigen::Matrix2d sqrt_info;
+  double sth;
 };
+
+// The whitening of an observation's position in a frame turned by `theta` from the map's
+// (positions there are R(theta) times the map's).
+Eigen::Matrix2d positionSqrtInfo(const PoseObservation& o, double theta) {
+  if (!o.xy_information) return Eigen::Matrix2d::Identity() / o.sigma_xy;
+  const Eigen::Matrix2d r = Eigen::Rotation2Dd(theta).toRotationMatrix();
+  const Eigen::Matrix2d info = r * *o.xy_information * r.transpose();
+  return info.llt().matrixU();
+}
 
 // Heading of `target` unwrapped to the one nearest `reference`.
 double unwrapNear(double target, double reference) {
@@ -388,16 +407,18 @@ CorrectionResult correctTraverse(const TraverseLog& log, const PoseObservation& 
                                  nullptr, &x[3 * i], &x[3 * (i + 1)], bias);
       }
       problem.SetParameterBlockConstant(&x[0]);
-      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PoseResidual, 3, 3>(
-                                   new PoseResidual(target, home.sigma_xy, home.sigma_theta)),
-                               nullptr, &x[3 * last]);
+      problem.AddResidualBlock(
+          new ceres::AutoDiffCostFunction<PoseResidual, 3, 3>(
+              new PoseResidual(target, positionSqrtInfo(home, start_inv.theta), home.sigma_theta)),
+          nullptr, &x[3 * last]);
       for (const PoseObservation& c : closures) {
         if (c.entry == 0 || c.entry >= last) continue;
         Pose2 t = start_inv * c.pose;
         t.theta = unwrapNear(t.theta, x[3 * c.entry + 2]);
-        problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PoseResidual, 3, 3>(
-                                     new PoseResidual(t, c.sigma_xy, c.sigma_theta)),
-                                 new ceres::HuberLoss(3.0), &x[3 * c.entry]);
+        problem.AddResidualBlock(
+            new ceres::AutoDiffCostFunction<PoseResidual, 3, 3>(
+                new PoseResidual(t, positionSqrtInfo(c, start_inv.theta), c.sigma_theta)),
+            new ceres::HuberLoss(3.0), &x[3 * c.entry]);
       }
       problem.AddResidualBlock(new ceres::AutoDiffCostFunction<BiasPrior, 3, 3>(new BiasPrior(m)),
                                nullptr, bias);

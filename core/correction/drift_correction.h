@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "core/correction/traverse_log.h"
 #include "core/geometry/pose2.h"
 #include "core/mapping/occupancy_grid.h"
@@ -35,6 +37,9 @@ struct PoseObservation {
   Pose2 pose;                 // X_MR at that entry
   double sigma_xy = 0.02;     // m, 1-sigma
   double sigma_theta = 0.01;  // rad, 1-sigma
+  // When set, replaces sigma_xy: the information (inverse covariance, per m^2) of the
+  // position, map frame; e.g. an alignment in a corridor pins the position across it only.
+  std::optional<Eigen::Matrix2d> xy_information;
 };
 
 // Odometry error model used by the fitted models (heading-drift, pose-graph): random

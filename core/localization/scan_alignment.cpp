@@ -179,6 +179,17 @@ AlignmentResult ScanAligner::align(const std::vector<const RadialMap*>& scans,
     }
   }
   result.rms_cells = result.inliers > 0 ? std::sqrt(sq / result.inliers) : 0.0;
+  // Information of the solution: J^T W J over the inliers.
+  for (size_t i = 0; i < pts.size(); ++i) {
+    const ceres::AutoDiffCostFunction<PointResidual, 1, 3> cost(
+        new PointResidual(&interpolator, pts[i], lim));
+    double d = 0.0, jac[3] = {0.0, 0.0, 0.0};
+    const double* params[1] = {pose};
+    double* jacobians[1] = {jac};
+    if (!cost.Evaluate(params, &d, jacobians) || std::abs(d) > config_.inlier_cells) continue;
+    const Eigen::Vector3d j(jac[0], jac[1], jac[2]);
+    result.information += weights[i] * j * j.transpose();
+  }
   if (result.inliers < config_.min_inlier_share * result.points) {
     result.message = std::to_string(result.inliers) + " of " + std::to_string(result.points) +
                      " points on the reference's obstacles, expected a share of at least " +
@@ -188,6 +199,20 @@ AlignmentResult ScanAligner::align(const std::vector<const RadialMap*>& scans,
   result.ok = summary.IsSolutionUsable();
   if (!result.ok) result.message = "the solver failed: " + summary.message;
   return result;
+}
+
+Eigen::Matrix2d positionInformation(const AlignmentResult& alignment, const Eigen::Vector2d& at) {
+  // Parameters of the correction C (x, y, theta; a point q maps to R q + t) against those of
+  // the corrected point's position and a rotation about it: d(at) = dt + dtheta J (at - t),
+  // so d(C) = A^-1 d(at, theta) with A = [I, J u; 0, 1], u = at - t.
+  const Eigen::Vector2d u = at - alignment.correction.translation();
+  Eigen::Matrix3d a_inv = Eigen::Matrix3d::Identity();
+  a_inv(0, 2) = u.y();
+  a_inv(1, 2) = -u.x();
+  const Eigen::Matrix3d h = a_inv.transpose() * alignment.information * a_inv;
+  Eigen::Matrix2d out = h.topLeftCorner<2, 2>();
+  if (h(2, 2) > 0.0) out -= h.topRightCorner<2, 1>() * h.bottomLeftCorner<1, 2>() / h(2, 2);
+  return out;
 }
 
 AlignmentResult alignScans(const std::vector<const RadialMap*>& scans,

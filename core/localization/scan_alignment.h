@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Core>
 #include <opencv2/core/mat.hpp>
 
 #include "core/geometry/pose2.h"
@@ -38,7 +39,16 @@ struct AlignmentResult {
   int inliers = 0;
   double rms_cells = 0.0;  // RMS distance of the inliers to the nearest occupied cell
   int iterations = 0;
+  // Gauss-Newton information of the correction's parameters (x m, y m, theta rad) over the
+  // inliers at the solution (residuals in cells, range-weighted): what the scans' obstacles
+  // pin down. A stretch of straight corridor pins the across-corridor offset and the
+  // heading, not the offset along it.
+  Eigen::Matrix3d information = Eigen::Matrix3d::Zero();
 };
+
+// The information `alignment` gives about the position of a point at `at` (map frame,
+// after the correction), the heading left free (Schur complement): 2x2, per m^2.
+Eigen::Matrix2d positionInformation(const AlignmentResult& alignment, const Eigen::Vector2d& at);
 
 // A reference map prepared for alignment (its distance field computed once).
 class ScanAligner {

@@ -21,6 +21,10 @@ void RadialMapConfig::validate() const {
   if (!(spike_ratio >= 0.0 && spike_ratio < 1.0))
     bad("spike_ratio", "a number in [0, 1)", spike_ratio);
   if (!(disparity_sigma > 0.0)) bad("disparity_sigma", "a positive number", disparity_sigma);
+  if (!(floor_edge_depth >= 0.0))
+    bad("floor_edge_depth", "a number >= 0 (0: off)", floor_edge_depth);
+  if (!(floor_tolerance > 0.0)) bad("floor_tolerance", "a positive number", floor_tolerance);
+  if (!(floor_edge_sigma >= 0.0)) bad("floor_edge_sigma", "a number >= 0", floor_edge_sigma);
 }
 
 RadialMap buildRadialMap(const cv::Mat& disparity, const RobotDescription& robot,
@@ -79,6 +83,34 @@ RadialMap buildRadialMap(const cv::Mat& disparity, const RobotDescription& robot
     if (r.kind == RadialKind::kNone && beyond) {
       r.kind = RadialKind::kBeyond;
       r.range = config.max_range;
+    }
+    if (r.kind == RadialKind::kNone && config.floor_edge_depth > 0.0) {
+      // The farthest floor row that the rows below it back up (3 of 5 on the floor); the
+      // median disparity of those rows is where the floor ends. (Rows of a textureless wall
+      // just above its foot match the foot's disparity, so the rows themselves are no
+      // measure of the range, and the smallest disparities put it too far.)
+      const auto onFloor = [&](int v) {
+        const float d = disparity.at<float>(v, u);
+        return d > 0.0f && std::abs(d - fb * (v - k.cy) / (k.fy * cam_z)) <= config.floor_tolerance;
+      };
+      for (int v = static_cast<int>(std::ceil(k.cy)) + 1; v < k.height; ++v) {
+        if (!onFloor(v)) continue;
+        band.clear();
+        for (int w = v; w < std::min(k.height, v + 5); ++w)
+          if (onFloor(w)) band.push_back(disparity.at<float>(w, u));
+        if (band.size() < 3) continue;
+        std::nth_element(band.begin(), band.begin() + band.size() / 2, band.end());
+        const double d = band[band.size() / 2];
+        const double z = fb / d;
+        if (z <= config.floor_edge_depth) {
+          r.disparity = d;
+          r.range = z * std::sqrt(1.0 + slope * slope);
+          r.sigma = std::max(config.floor_edge_sigma,
+                             z * z / fb * config.disparity_sigma * std::sqrt(1.0 + slope * slope));
+          r.kind = RadialKind::kHit;
+        }
+        break;
+      }
     }
   }
   removeSpikes(out, config.spike_ratio);

@@ -20,6 +20,18 @@ struct RadialMapConfig {
   double support_tolerance = 0.6;  // px of disparity for agreement
   double spike_ratio = 0.3;  // a column this much nearer than both agreeing neighbours is a spike
   double disparity_sigma = 0.12;  // px, stereo disparity noise used for range uncertainty
+  // Beyond the paper: a column with no return of its own whose view of the floor ends
+  // nearer than this depth (m) has met something the cameras cannot match (a textureless
+  // wall): a return at the floor's end. Open floor stays matchable to about 1.6 m with the
+  // B-14's 160 x 120 cameras 0.9 m up (nearer than about 1.22 m they do not see the floor),
+  // so only a nearer end says "occluded"; 1.5 m suits them. 0: off (the default: in a room
+  // whose walls all have texture it only adds the floor ends' errors; measured, README).
+  double floor_edge_depth = 0.0;
+  double floor_tolerance = 0.5;  // px: a pixel is floor when its disparity is the floor's +- this
+  // m, 1-sigma range uncertainty of a floor's end at least (on rendered frames it fell 2 cm
+  // nearer to 11 cm farther than the wall): free space is marked only up to its uncertainty
+  // region, so a floor's end placed too far does not clear what stereo saw there.
+  double floor_edge_sigma = 0.08;
 
   void validate() const;  // throws std::invalid_argument naming the field
 };
@@ -46,7 +58,8 @@ struct RadialMap {
   std::vector<RadialReading> readings;      // one per reference image column, left to right
 };
 
-// Builds the radial map of a disparity image (CV_32F, kInvalidDisparity = invalid).
+// Builds the radial map of a disparity image (CV_32F, kInvalidDisparity = invalid). The
+// floor is taken as level, at the rig's mount height below the reference camera.
 RadialMap buildRadialMap(const cv::Mat& disparity, const RobotDescription& robot,
                          const RadialMapConfig& config, double stamp, const Pose2& odometry);
 

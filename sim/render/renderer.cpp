@@ -138,10 +138,10 @@ Renderer::Renderer(const World& world, const CameraIntrinsics& k, double near_m,
     b.texture = im.upload(makeTexture(spec));
     b.tile = spec.tile;
   }
-  // Floor.
-  {
+  // Floor (texture coordinates in world metres, so rectangles that meet match).
+  for (const FloorArea& area : world.floorRects()) {
     Impl::Batch& b = im.batches.at(world.floor_texture);
-    const Eigen::Vector2d lo = world.floor_min, hi = world.floor_max;
+    const Eigen::Vector2d lo = area.min, hi = area.max;
     addQuad(b.vertices, {lo.x(), lo.y(), 0}, {hi.x(), lo.y(), 0}, {hi.x(), hi.y(), 0},
             {lo.x(), hi.y(), 0}, {lo.x(), lo.y()}, {hi.x(), lo.y()}, {hi.x(), hi.y()},
             {lo.x(), hi.y()}, b.tile);

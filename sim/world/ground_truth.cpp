@@ -21,11 +21,13 @@ bool insideFootprint(const SolidBox& box, const Eigen::Vector2d& p) {
 
 GridU8 floorMask(const World& world, const MapLimits& limits) {
   GridU8 mask(limits, 0);
+  const std::vector<FloorArea> rects = world.floorRects();
   for (int iy = 0; iy < limits.height; ++iy)
     for (int ix = 0; ix < limits.width; ++ix) {
       const Eigen::Vector2d c = limits.cellCenter(ix, iy);
-      mask.at(ix, iy) = c.x() > world.floor_min.x() && c.y() > world.floor_min.y() &&
-                        c.x() < world.floor_max.x() && c.y() < world.floor_max.y();
+      mask.at(ix, iy) = std::any_of(rects.begin(), rects.end(), [&](const FloorArea& a) {
+        return c.x() > a.min.x() && c.y() > a.min.y() && c.x() < a.max.x() && c.y() < a.max.y();
+      });
     }
   return mask;
 }

@@ -147,11 +147,19 @@ struct RobotSpec {
   std::vector<Waypoint> route;
 };
 
+// An axis-aligned rectangle of floor (m).
+struct FloorArea {
+  Eigen::Vector2d min, max;
+};
+
 struct World {
   std::string name;
   std::string file;  // where it was loaded from
   uint64_t seed = 1;
+  // The floor's bounding rectangle; the floor itself is `floor_areas` (rectangles, e.g. the
+  // rooms and corridors of a building), or all of the bounding rectangle if that is empty.
   Eigen::Vector2d floor_min{0.0, 0.0}, floor_max{10.0, 8.0};
+  std::vector<FloorArea> floor_areas;
   std::string floor_texture;
   std::map<std::string, TextureSpec> textures;
   std::vector<WallSpec> walls;
@@ -180,7 +188,14 @@ struct World {
     std::optional<double> fringe_clearance;       // m: FrontierConfig::fringe_clearance
     std::optional<double> goal_clearance;         // m: FrontierConfig::goal_clearance
     std::optional<bool> retry_frontiers;          // MissionConfig::retry_frontiers
+    std::optional<double> floor_edge_depth;       // m: RadialMapConfig::floor_edge_depth
+    std::optional<bool> shaped_closures;          // CooperationConfig::closure_shape
   } exploration;
+
+  // The floor's rectangles: `floor_areas`, or the bounding rectangle if that is empty.
+  std::vector<FloorArea> floorRects() const;
+  // Whether p lies on the floor (edges included).
+  bool onFloor(const Eigen::Vector2d& p) const;
 
   // Every solid that never moves, as boxes: walls, furniture, doors that stay closed,
   // home-base arms.

@@ -61,9 +61,13 @@ Pose2 parseStart(const YamlField& f) {
   return {p.x(), p.y(), wrapAngle(h * kDeg)};
 }
 
-bool inside(const World& w, const Eigen::Vector2d& p) {
-  return p.x() >= w.floor_min.x() && p.y() >= w.floor_min.y() && p.x() <= w.floor_max.x() &&
-         p.y() <= w.floor_max.y();
+bool inside(const World& w, const Eigen::Vector2d& p) { return w.onFloor(p); }
+
+FloorArea parseFloorArea(const YamlField& f) {
+  const FloorArea a{f["min"].asVector2(), f["max"].asVector2()};
+  if (!(a.max.x() > a.min.x() && a.max.y() > a.min.y()))
+    f["max"].fail("a corner above and to the right of 'min'");
+  return a;
 }
 }  // namespace
 
@@ -89,6 +93,18 @@ std::vector<SolidBox> World::doorsClosedAt(double t) const {
   for (const DoorSpec& door : doors)
     if (door.scheduled() && !door.openAt(t)) out.push_back(door.panel());
   return out;
+}
+
+std::vector<FloorArea> World::floorRects() const {
+  if (!floor_areas.empty()) return floor_areas;
+  return {FloorArea{floor_min, floor_max}};
+}
+
+bool World::onFloor(const Eigen::Vector2d& p) const {
+  for (const FloorArea& a : floorRects())
+    if (p.x() >= a.min.x() && p.y() >= a.min.y() && p.x() <= a.max.x() && p.y() <= a.max.y())
+      return true;
+  return false;
 }
 
 std::vector<SolidBox> World::solids() const {
@@ -200,8 +216,8 @@ World parseWorld(const std::string& text, const std::string& file) {
     if (w.mission != "routes" && w.mission != "explore") mode.fail("'routes' or 'explore'");
     if (mission->isMap()) {
       mission->allowOnly({"mode", "sortie_budget_m", "first_sortie_budget_m", "safety_distance",
-                          "slow_distance", "fringe_clearance", "goal_clearance",
-                          "retry_frontiers"});
+                          "slow_distance", "fringe_clearance", "goal_clearance", "retry_frontiers",
+                          "floor_edge_depth", "shaped_closures"});
       World::Exploration& e = w.exploration;
       auto metres = [&](const char* key, double lo, double hi, const char* what,
                         std::optional<double>& out) {
@@ -214,8 +230,11 @@ World parseWorld(const std::string& text, const std::string& file) {
       metres("slow_distance", 0.0, 10.0, "metres in [0, 10] (0: never slow down)", e.slow_distance);
       metres("fringe_clearance", 0.0, 5.0, "metres in [0, 5] (0: off)", e.fringe_clearance);
       metres("goal_clearance", 0.0, 5.0, "metres in [0, 5] (0: off)", e.goal_clearance);
+      metres("floor_edge_depth", 0.0, 5.0, "metres in [0, 5] (0: off)", e.floor_edge_depth);
       if (mission->has("retry_frontiers"))
         e.retry_frontiers = (*mission)["retry_frontiers"].asBool();
+      if (mission->has("shaped_closures"))
+        e.shaped_closures = (*mission)["shaped_closures"].asBool();
     }
   }
   if (root.has("seed")) w.seed = static_cast<uint64_t>(root["seed"].asInt(0, 1 << 30));
@@ -225,11 +244,33 @@ World parseWorld(const std::string& text, const std::string& file) {
     w.textures[name] = parseTexture(textures[name], name, w.seed);
 
   const YamlField floor = root["floor"];
-  floor.allowOnly({"min", "max", "texture"});
-  w.floor_min = floor["min"].asVector2();
-  w.floor_max = floor["max"].asVector2();
-  if (!(w.floor_max.x() > w.floor_min.x() && w.floor_max.y() > w.floor_min.y()))
-    floor["max"].fail("a corner above and to the right of 'min'");
+  // Either one rectangle (min, max) or the rectangles of rooms and corridors (areas).
+  floor.allowOnly({"min", "max", "areas", "texture"});
+  if (floor.has("areas") == (floor.has("min") || floor.has("max")))
+    floor.failMessage(
+        "expected either 'min' and 'max' (one rectangle) or 'areas' (a list of "
+        "{min, max} rectangles)" +
+        std::string(floor.has("areas") ? ", not both" : ""));
+  if (floor.has("areas")) {
+    const YamlField areas = floor["areas"];
+    const std::vector<YamlField> items =
+        areas.isSequence() ? areas.elements() : std::vector<YamlField>{};
+    if (items.empty()) areas.fail("a non-empty list of {min, max} rectangles");
+    for (const YamlField& item : items) {
+      item.allowOnly({"min", "max"});
+      w.floor_areas.push_back(parseFloorArea(item));
+    }
+    w.floor_min = w.floor_areas.front().min;
+    w.floor_max = w.floor_areas.front().max;
+    for (const FloorArea& a : w.floor_areas) {
+      w.floor_min = w.floor_min.cwiseMin(a.min);
+      w.floor_max = w.floor_max.cwiseMax(a.max);
+    }
+  } else {
+    const FloorArea a = parseFloorArea(floor);
+    w.floor_min = a.min;
+    w.floor_max = a.max;
+  }
   w.floor_texture = textureRef(floor, w, "");
 
   if (const auto sim = root.get("simulation")) {

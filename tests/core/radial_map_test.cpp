@@ -69,6 +69,37 @@ TEST(RadialMapTest, ObstacleAboveTheRobotIsIgnored) {
   for (const RadialReading& rd : m.readings) EXPECT_NE(rd.kind, RadialKind::kHit);
 }
 
+// A textureless wall: its own pixels never match, only the floor in front of it does. Near
+// enough that open floor would still be matched beyond it, the floor's end is the wall.
+TEST(RadialMapTest, WhereTheFloorEndsNearAnUnmatchableWallStands) {
+  const RobotDescription r = robot();
+  for (const double z : {1.3, 1.45, 1.8}) {
+    cv::Mat d = wallAndFloor(r, z, 2.5);
+    const CameraIntrinsics& k = r.rig.intrinsics;
+    for (int v = 0; v < k.height; ++v)
+      for (int u = 0; u < k.width; ++u)  // the wall: nothing matched
+        if (std::abs(d.at<float>(v, u) - 8.0 / z) < 1e-4f) d.at<float>(v, u) = kInvalidDisparity;
+    RadialMapConfig on, off;
+    on.floor_edge_depth = 1.5;
+    const RadialMap m = buildRadialMap(d, r, on, 0.0, Pose2());
+    const RadialMap without = buildRadialMap(d, r, off, 0.0, Pose2());
+    for (size_t u = 0; u < m.readings.size(); u += 10) {
+      const RadialReading& rd = m.readings[u];
+      EXPECT_EQ(without.readings[u].kind, RadialKind::kNone);
+      if (z > 1.5) {  // could be where open floor stops being matched: nothing known
+        EXPECT_EQ(rd.kind, RadialKind::kNone) << z;
+        continue;
+      }
+      ASSERT_EQ(rd.kind, RadialKind::kHit) << "wall at " << z << " m, column " << u;
+      // Within three image rows of floor, on the near side: the floor's end falls between
+      // rows, and the median of the last five floor rows is two rows nearer than the last.
+      const double row = z * z / (r.rig.intrinsics.fy * 0.9) / std::cos(rd.bearing);
+      EXPECT_LE(rd.range, z / std::cos(rd.bearing) + 0.01) << "wall at " << z << " m";
+      EXPECT_GE(rd.range, z / std::cos(rd.bearing) - 3.0 * row) << "wall at " << z << " m";
+    }
+  }
+}
+
 TEST(RadialMapTest, FarWallCountsAsBeyondRange) {
   const RobotDescription r = robot();
   const RadialMap m = buildRadialMap(wallAndFloor(r, 6.0, 2.5), r, RadialMapConfig{}, 0.0, Pose2());

@@ -53,9 +53,14 @@ TEST(ExploreScenarioTest, TheBuildingsMissionSettingsApplyUnlessTheCommandLineSa
   EXPECT_EQ(r.mission_settings->slow_distance, 1.0);
   EXPECT_EQ(r.mission_settings->fringe_clearance, 0.3);
   EXPECT_TRUE(r.mission_settings->retry_frontiers);
+  EXPECT_EQ(r.mission_settings->floor_edge_depth, 1.5);
+  EXPECT_TRUE(r.mission_settings->shaped_closures);
   o.safety_distance = 0.6;
   o.retry_frontiers = false;
+  o.floor_edge_depth = 0.0;
   r = runWorld(o);
+  EXPECT_EQ(r.mission_settings->floor_edge_depth, 0.0);
+  EXPECT_TRUE(r.mission_settings->shaped_closures);
   EXPECT_EQ(r.mission_settings->safety_distance, 0.6);
   EXPECT_FALSE(r.mission_settings->retry_frontiers);
   EXPECT_EQ(r.mission_settings->slow_distance, 1.0);
@@ -68,6 +73,8 @@ TEST(ExploreScenarioTest, TheBuildingsMissionSettingsApplyUnlessTheCommandLineSa
   ASSERT_TRUE(r.mission_settings.has_value());
   EXPECT_EQ(r.mission_settings->safety_distance, MissionConfig{}.safety_distance);
   EXPECT_EQ(r.mission_settings->first_sortie_budget_m, 0.0);
+  EXPECT_EQ(r.mission_settings->floor_edge_depth, 0.0);
+  EXPECT_FALSE(r.mission_settings->shaped_closures);
   EXPECT_FALSE(r.mission_settings->retry_frontiers);
 }
 

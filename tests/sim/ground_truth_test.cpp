@@ -59,5 +59,17 @@ TEST(GroundTruthTest, FloorMaskCoversTheFloorOnly) {
   EXPECT_EQ(m.at(5, 5), 1);
 }
 
+TEST(GroundTruthTest, FloorMaskOfAreasCoversTheirCellsOnly) {
+  World w = boxWorld(0.0);
+  w.floor_areas = {{{0, 0}, {4, 1}}, {{3, 1}, {4, 4}}};  // an L inside the 4 m square
+  const MapLimits lim = worldMapLimits(w, 0.5);
+  const GridU8 m = floorMask(w, lim);
+  EXPECT_EQ(count(m), 40 * 10 + 10 * 30);
+  const auto at = [&](double x, double y) { return m.at(lim.cellX(x), lim.cellY(y)); };
+  EXPECT_EQ(at(0.5, 0.5), 1);
+  EXPECT_EQ(at(3.5, 3.5), 1);
+  EXPECT_EQ(at(1.5, 2.5), 0);  // in the square, not on the floor
+}
+
 }  // namespace
 }  // namespace coopmap::sim

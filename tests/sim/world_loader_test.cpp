@@ -86,7 +86,8 @@ TEST(WorldLoaderTest, MissionSaysWhatRunDoesByDefault) {
 TEST(WorldLoaderTest, MissionSettingsOfABuildingAreReadAndChecked) {
   const World w = parseWorld(
       "mission: {mode: explore, first_sortie_budget_m: 10, safety_distance: 0.45, "
-      "slow_distance: 1, fringe_clearance: 0.3, goal_clearance: 0.4, retry_frontiers: true}\n" +
+      "slow_distance: 1, fringe_clearance: 0.3, goal_clearance: 0.4, retry_frontiers: true, "
+      "floor_edge_depth: 1.5, shaped_closures: true}\n" +
           minimal(),
       "w.yaml");
   EXPECT_EQ(w.mission, "explore");
@@ -96,6 +97,8 @@ TEST(WorldLoaderTest, MissionSettingsOfABuildingAreReadAndChecked) {
   EXPECT_EQ(w.exploration.fringe_clearance, 0.3);
   EXPECT_EQ(w.exploration.goal_clearance, 0.4);
   EXPECT_EQ(w.exploration.retry_frontiers, true);
+  EXPECT_EQ(w.exploration.floor_edge_depth, 1.5);
+  EXPECT_EQ(w.exploration.shaped_closures, true);
   EXPECT_FALSE(parseWorld(minimal(), "w.yaml").exploration.safety_distance.has_value());
   const World building = loadWorld(kSrc + "/worlds/lab_corridor.yaml");
   EXPECT_TRUE(building.exploration.retry_frontiers.value_or(false));
@@ -142,6 +145,38 @@ TEST(WorldLoaderTest, WrongCornerCount) {
 TEST(WorldLoaderTest, WaypointOffTheFloor) {
   const std::string e = errorOf(replaceLine(minimal(), 16, "    route: [[3, 3], [9, 3]]"));
   EXPECT_EQ(e, "w.yaml:16:21: robots[0].route[1]: expected a waypoint on the floor, got a list");
+}
+
+// A building's floor is its rooms and corridors: an L of two rectangles here.
+TEST(WorldLoaderTest, FloorOfRoomsAndCorridorsIsTheirRectangles) {
+  const std::string l_shape =
+      "floor:\n"
+      "  texture: a\n"
+      "  areas:\n"
+      "    - {min: [0, 0], max: [5, 4]}\n"
+      "    - {min: [4, 4], max: [5, 9]}\n";
+  std::string text = replaceLine(minimal(), 4, l_shape);
+  const World w = parseWorld(text, "w.yaml");
+  ASSERT_EQ(w.floor_areas.size(), 2u);
+  EXPECT_EQ(w.floor_min, Eigen::Vector2d(0, 0));
+  EXPECT_EQ(w.floor_max, Eigen::Vector2d(5, 9));
+  EXPECT_TRUE(w.onFloor({4.5, 8.0}));
+  EXPECT_TRUE(w.onFloor({1.0, 1.0}));
+  EXPECT_FALSE(w.onFloor({1.0, 8.0}));  // inside the bounding box, off the floor
+
+  // A waypoint in the corner the L leaves out is off the floor.
+  EXPECT_NE(errorOf(replaceLine(text, 21, "    route: [[1, 6]]")).find("a waypoint on the floor"),
+            std::string::npos)
+      << errorOf(replaceLine(text, 21, "    route: [[1, 6]]"));
+  // Both forms at once, an empty list and an upside-down rectangle are refused by line.
+  const std::string both = errorOf(replaceLine(text, 5, "  texture: a\n  min: [0, 0]"));
+  EXPECT_NE(both.find("w.yaml:5:3: floor:"), std::string::npos) << both;
+  EXPECT_NE(both.find("either 'min' and 'max'"), std::string::npos) << both;
+  const std::string empty = errorOf(replaceLine(minimal(), 4, "floor: {texture: a, areas: []}"));
+  EXPECT_NE(empty.find("a non-empty list"), std::string::npos) << empty;
+  const std::string flipped = errorOf(replaceLine(text, 8, "    - {min: [4, 9], max: [5, 4]}"));
+  EXPECT_NE(flipped.find("w.yaml:8"), std::string::npos) << flipped;
+  EXPECT_NE(flipped.find("above and to the right"), std::string::npos) << flipped;
 }
 
 TEST(WorldLoaderTest, MissingModelFileIsReported) {

@@ -1,0 +1,124 @@
+// Alignment of radial maps to a reference grid, and what an alignment pins down: a
+// straight corridor's walls fix the offset across the corridor and the heading, not the
+// offset along it; a corner fixes both.
+#include "core/localization/scan_alignment.h"
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <Eigen/Eigenvalues>
+
+namespace coopmap {
+namespace {
+
+struct Segment {
+  Eigen::Vector2d a, b;
+};
+
+// Range from `origin` along `dir` to the nearest segment (-1: none within max_range).
+double castRay(const std::vector<Segment>& walls, const Eigen::Vector2d& origin,
+               const Eigen::Vector2d& dir, double max_range) {
+  double best = -1.0;
+  for (const Segment& w : walls) {
+    const Eigen::Vector2d e = w.b - w.a;
+    const double den = dir.x() * e.y() - dir.y() * e.x();
+    if (std::abs(den) < 1e-12) continue;
+    const Eigen::Vector2d d = w.a - origin;
+    const double t = (d.x() * e.y() - d.y() * e.x()) / den;
+    const double u = (d.x() * dir.y() - d.y() * dir.x()) / den;
+    if (t > 0.0 && t <= max_range && u >= 0.0 && u <= 1.0 && (best < 0.0 || t < best)) best = t;
+  }
+  return best;
+}
+
+// The walls as a reference grid (one insert of dense exact rays from a few poses).
+OccupancyGrid referenceOf(const std::vector<Segment>& walls, const std::vector<Pose2>& from) {
+  OccupancyGrid grid(MapLimits::covering({-6, -4}, {6, 4}, 0.05), OccupancyConfig{});
+  for (const Pose2& p : from) {
+    RadialMap scan;
+    scan.odometry = p;
+    for (int i = 0; i < 720; ++i) {
+      RadialReading r;
+      r.bearing = -M_PI + i * M_PI / 360.0;
+      const double a = p.theta + r.bearing;
+      r.range = castRay(walls, p.translation(), {std::cos(a), std::sin(a)}, 8.0);
+      if (r.range < 0.0) continue;
+      r.kind = RadialKind::kHit;
+      r.sigma = 0.005;
+      scan.readings.push_back(r);
+    }
+    for (int k = 0; k < 3; ++k) grid.insert(scan, p);
+  }
+  return grid;
+}
+
+// A stereo-like view from `pose`: 160 columns over 90 degrees, hits within 3.5 m, ranges
+// with 2 cm of noise (seeded).
+RadialMap viewOf(const std::vector<Segment>& walls, const Pose2& pose, uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> noise(0.0, 0.02);
+  RadialMap scan;
+  scan.odometry = pose;
+  for (int i = 0; i < 160; ++i) {
+    RadialReading r;
+    r.bearing = M_PI / 4 - i * (M_PI / 2) / 159.0;
+    const double a = pose.theta + r.bearing;
+    r.range = castRay(walls, pose.translation(), {std::cos(a), std::sin(a)}, 3.5);
+    if (r.range < 0.0) continue;
+    r.range += noise(rng);
+    r.kind = RadialKind::kHit;
+    r.sigma = 0.02;
+    scan.readings.push_back(r);
+  }
+  return scan;
+}
+
+// Eigenvalues (ascending) and the weak direction of the position information at `at`.
+struct Pinned {
+  double weak, strong;
+  Eigen::Vector2d weak_dir;
+};
+Pinned pinned(const AlignmentResult& a, const Eigen::Vector2d& at) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(positionInformation(a, at));
+  return {eig.eigenvalues()(0), eig.eigenvalues()(1), eig.eigenvectors().col(0)};
+}
+
+TEST(ScanAlignmentTest, ACorridorPinsTheOffsetAcrossItNotAlongIt) {
+  // Walls on cell centres (the grid's cells are 5 cm): one cell thick in the reference.
+  const std::vector<Segment> corridor = {{{-6, -0.975}, {6, -0.975}}, {{-6, 1.025}, {6, 1.025}}};
+  std::vector<Pose2> along;
+  for (double x = -5.5; x <= 5.5; x += 0.5) along.emplace_back(x, 0.0, 0.0);
+  const OccupancyGrid ref = referenceOf(corridor, along);
+  const std::vector<RadialMap> views = {viewOf(corridor, {0, 0, 0.3}, 1),
+                                        viewOf(corridor, {0.5, 0, -0.3}, 2)};
+  const std::vector<const RadialMap*> scans = {&views[0], &views[1]};
+  // Off across the corridor and in heading: both come back.
+  const AlignmentResult a = alignScans(scans, ref, Pose2(0.0, 0.08, 0.02));
+  ASSERT_TRUE(a.ok) << a.message;
+  EXPECT_NEAR(a.correction.y, 0.0, 0.02);
+  EXPECT_NEAR(a.correction.theta, 0.0, 0.01);
+  const Pinned p = pinned(a, {0.25, 0.0});
+  EXPECT_LT(p.weak, 0.05 * p.strong) << p.weak << " vs " << p.strong;
+  EXPECT_GT(std::abs(p.weak_dir.x()), 0.98) << p.weak_dir.transpose();  // along the walls
+}
+
+TEST(ScanAlignmentTest, ACornerPinsBothOffsets) {
+  const std::vector<Segment> corner = {{{-6, -0.975}, {2.025, -0.975}},
+                                       {{-6, 1.025}, {2.025, 1.025}},
+                                       {{2.025, -0.975}, {2.025, 1.025}}};
+  const OccupancyGrid ref = referenceOf(corner, {{-3, 0, 0}, {0, 0, 0}, {1.5, 0, 0}});
+  const std::vector<RadialMap> views = {viewOf(corner, {0, 0, 0.3}, 3),
+                                        viewOf(corner, {0.5, 0, -0.3}, 4)};
+  const std::vector<const RadialMap*> scans = {&views[0], &views[1]};
+  const AlignmentResult a = alignScans(scans, ref, Pose2(0.06, 0.05, 0.02));
+  ASSERT_TRUE(a.ok) << a.message;
+  EXPECT_NEAR(a.correction.x, 0.0, 0.02);
+  EXPECT_NEAR(a.correction.y, 0.0, 0.02);
+  const Pinned p = pinned(a, {0.25, 0.0});
+  EXPECT_GT(p.weak, 0.05 * p.strong) << p.weak << " vs " << p.strong;
+}
+
+}  // namespace
+}  // namespace coopmap
