@@ -9,13 +9,13 @@
 #include <gtest/gtest.h>
 
 #include "core/agent/map_tracker.h"
+#include "tests/core/segment_world.h"
 
 namespace coopmap {
 namespace {
 
-struct Segment {
-  Eigen::Vector2d a, b;
-};
+using test::castRay;
+using test::Segment;
 
 // A 6 m x 5 m room with a box in it, origin at its south-west corner.
 std::vector<Segment> room() {
@@ -32,19 +32,9 @@ RadialMap scanAt(const Pose2& pose, const std::vector<Segment>& world) {
     RadialReading r;
     r.bearing = (k - 39.5) / 79.0 * (M_PI / 3.0);
     const double a = pose.theta + r.bearing;
-    const Eigen::Vector2d o = pose.translation(), d(std::cos(a), std::sin(a));
-    double best = 1e9;
-    for (const Segment& s : world) {
-      const Eigen::Vector2d e = s.b - s.a;
-      const double den = d.x() * e.y() - d.y() * e.x();
-      if (std::abs(den) < 1e-12) continue;
-      const Eigen::Vector2d w = s.a - o;
-      const double t = (w.x() * e.y() - w.y() * e.x()) / den;
-      const double u = (w.x() * d.y() - w.y() * d.x()) / den;
-      if (t > 0 && u >= 0 && u <= 1) best = std::min(best, t);
-    }
-    r.range = std::min(best, 4.0);
-    r.kind = best < 4.0 ? RadialKind::kHit : RadialKind::kBeyond;
+    const double t = castRay(world, pose.translation(), {std::cos(a), std::sin(a)}, 4.0);
+    r.range = t < 0.0 ? 4.0 : t;
+    r.kind = t < 0.0 ? RadialKind::kBeyond : RadialKind::kHit;
     r.sigma = 0.01;
     m.readings.push_back(r);
   }

@@ -10,28 +10,13 @@
 #include <gtest/gtest.h>
 #include <Eigen/Eigenvalues>
 
+#include "tests/core/segment_world.h"
+
 namespace coopmap {
 namespace {
 
-struct Segment {
-  Eigen::Vector2d a, b;
-};
-
-// Range from `origin` along `dir` to the nearest segment (-1: none within max_range).
-double castRay(const std::vector<Segment>& walls, const Eigen::Vector2d& origin,
-               const Eigen::Vector2d& dir, double max_range) {
-  double best = -1.0;
-  for (const Segment& w : walls) {
-    const Eigen::Vector2d e = w.b - w.a;
-    const double den = dir.x() * e.y() - dir.y() * e.x();
-    if (std::abs(den) < 1e-12) continue;
-    const Eigen::Vector2d d = w.a - origin;
-    const double t = (d.x() * e.y() - d.y() * e.x()) / den;
-    const double u = (d.x() * dir.y() - d.y() * dir.x()) / den;
-    if (t > 0.0 && t <= max_range && u >= 0.0 && u <= 1.0 && (best < 0.0 || t < best)) best = t;
-  }
-  return best;
-}
+using test::castRay;
+using test::Segment;
 
 // The walls as a reference grid (one insert of dense exact rays from a few poses).
 OccupancyGrid referenceOf(const std::vector<Segment>& walls, const std::vector<Pose2>& from) {
