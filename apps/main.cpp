@@ -15,6 +15,7 @@
 #include "apps/odometry_fit_command.h"
 #include "apps/replay_command.h"
 #include "apps/robot_command.h"
+#include "apps/run_mission_options.h"
 #include "apps/run_world.h"
 #include "apps/stereo_eval_command.h"
 #include "apps/traverse_command.h"
@@ -74,57 +75,7 @@ int main(int argc, char** argv) {
                  "Follow the scripted routes of the world file (the default unless the world "
                  "says 'mission: explore')")
       ->excludes("--explore");
-  cmd_run
-      ->add_option("--sortie-budget", run.sortie_budget_m,
-                   "With --explore: metres of a sortie before the robot goes home to be "
-                   "localized, share its corrected traverse and import the shared map")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber);
-  double first_sortie_budget = 0.0, safety_distance = 0.0, slow_distance = 0.0,
-         fringe_clearance = 0.0, goal_clearance = 0.0, floor_edge_depth = 0.0;
-  bool retry_frontiers = false, no_retry_frontiers = false;
-  cmd_run
-      ->add_option("--first-sortie-budget", first_sortie_budget,
-                   "With --explore and sorties: metres of the first sortie (0: --sortie-budget); "
-                   "a short first one calibrates the odometry near home before long ones "
-                   "[default: the world's mission settings, else 0]")
-      ->check(CLI::NonNegativeNumber);
-  cmd_run
-      ->add_option("--safety-distance", safety_distance,
-                   "With --explore: m from the cameras; an obstacle ahead nearer than this stops "
-                   "the robot [default: the world's, else 0.30]")
-      ->check(CLI::PositiveNumber);
-  cmd_run
-      ->add_option("--slow-distance", slow_distance,
-                   "With --explore: m; an obstacle ahead nearer than this slows the robot "
-                   "(0: never) [default: the world's, else 0]")
-      ->check(CLI::NonNegativeNumber);
-  cmd_run
-      ->add_option("--fringe-clearance", fringe_clearance,
-                   "With --explore: m; uncertain cells this far from obstacles, joined to unseen "
-                   "ones, make frontiers when no other frontier has a goal (0: off) [default: "
-                   "the world's, else 0]")
-      ->check(CLI::NonNegativeNumber);
-  cmd_run
-      ->add_option("--floor-edge-depth", floor_edge_depth,
-                   "m; a camera column that matches nothing but sees the floor end nearer than "
-                   "this depth has met a textureless wall there (0: off) [default: the world's, "
-                   "else 0]")
-      ->check(CLI::Range(0.0, 5.0));
-  cmd_run
-      ->add_option("--goal-clearance", goal_clearance,
-                   "With --explore: m; frontier goals this far from anything blocked are "
-                   "preferred (0: the nearest free cell) [default: the world's, else 0]")
-      ->check(CLI::NonNegativeNumber);
-  auto* retry_opt = cmd_run->add_flag(
-      "--retry-frontiers", retry_frontiers,
-      "With --explore and sorties: frontiers whose goals failed send the robot home to share "
-      "and try again next sortie, rather than end exploration; reached goals are not tried "
-      "again [default: the world's, else off]");
-  cmd_run
-      ->add_flag("--no-retry-frontiers", no_retry_frontiers,
-                 "With --explore: end exploration when no frontier goal is left this sortie")
-      ->excludes(retry_opt);
+  coopmap::addMissionSettingOptions(*cmd_run, run);
   cmd_run
       ->add_option("--sorties", run.max_sorties,
                    "With --explore: sorties at most (1: explore once, share after the run)")
@@ -139,12 +90,6 @@ int main(int argc, char** argv) {
                     "With --explore: drive every sortie on raw odometry (default: odometry "
                     "calibrated online with the systematic errors the home-base fixes found)");
   cmd_run
-      ->add_option("--margin", run.planning_margin,
-                   "With --explore: metres kept clear around the robot's body in planning, "
-                   "room for the estimate's drift")
-      ->capture_default_str()
-      ->check(CLI::Range(0.0, 1.0));
-  cmd_run
       ->add_option("--teammate-mask", run.teammate_mask_m,
                    "With several robots: metres around where a teammate reports itself within "
                    "which returns are the teammate and are not mapped (0: mapped like the world)")
@@ -157,17 +102,6 @@ int main(int argc, char** argv) {
                    "aligned to the shared map, to the sortie's other half, both, or none")
       ->capture_default_str()
       ->check(CLI::IsMember({"both", "shared", "self", "none"}));
-  bool shaped_closures = false, round_closures = false;
-  auto* shaped_opt = cmd_run->add_flag(
-      "--shaped-closures", shaped_closures,
-      "With --explore and closures: a closure pins its position only in the directions its "
-      "alignment pins down (along a straight corridor's walls it is left loose) [default: the "
-      "world's, else off]");
-  cmd_run
-      ->add_flag("--round-closures", round_closures,
-                 "With --explore and closures: each closure pins its position in every "
-                 "direction alike")
-      ->excludes(shaped_opt);
   bool no_coordination = false;
   cmd_run->add_flag("--no-coordination", no_coordination,
                     "With --explore and several robots: each explores as if alone (default: "
@@ -269,7 +203,7 @@ int main(int argc, char** argv) {
   cmd_eval->add_flag("--single-pair", single_pair, "Use the horizontal pair only");
   cmd_eval->add_option("--png", eval.png_dir,
                        "Folder for pictures: reference, disparity and truth in colour, errors");
-  cmd_eval->add_flag("--json", json, "Print bad_pixel_rate, mae, density as JSON");
+  cmd_eval->add_flag("--json", json, "Print bad_pixel_rate, mae, bias, density as JSON");
 
   coopmap::CornersOptions corners;
   auto* cmd_corners = app.add_subcommand(
@@ -511,16 +445,17 @@ int main(int argc, char** argv) {
         coopmap::JsonWriter j;
         j.beginObject();
         j.value("bad_pixel_rate", r.score.bad_pixel_rate).value("mae", r.score.mae);
+        j.value("bias", r.score.bias);
         j.value("density", r.score.density).value("frames", r.frames);
         j.value("evaluated_pixels", r.score.evaluated).value("valid_pixels", r.score.valid);
         j.endObject();
         std::printf("%s", j.str().c_str());
       } else {
         std::printf(
-            "frames %d: bad_pixel_rate %.4f (> 1 px), mae %.3f px, density %.3f "
-            "(%d of %d pixels with ground truth)\n",
-            r.frames, r.score.bad_pixel_rate, r.score.mae, r.score.density, r.score.valid,
-            r.score.evaluated);
+            "frames %d: bad_pixel_rate %.4f (> 1 px), mae %.3f px, bias %+.3f px (good "
+            "pixels), density %.3f (%d of %d pixels with ground truth)\n",
+            r.frames, r.score.bad_pixel_rate, r.score.mae, r.score.bias, r.score.density,
+            r.score.valid, r.score.evaluated);
       }
     }
     if (cmd_replay->parsed()) {
@@ -539,19 +474,9 @@ int main(int argc, char** argv) {
       run.coordinate = !no_coordination;
       run.cooperation.closures = closures == "both" || closures == "shared";
       run.cooperation.self_closures = closures == "both" || closures == "self";
-      if (shaped_closures) run.shaped_closures = true;
-      if (round_closures) run.shaped_closures = false;
       if (robots > 0) run.robots = robots;
       if (!odometry.empty()) run.odometry = odometry;
       if (sensing_rate > 0.0) run.sensing_rate = sensing_rate;
-      if (cmd_run->count("--first-sortie-budget")) run.first_sortie_budget_m = first_sortie_budget;
-      if (cmd_run->count("--safety-distance")) run.safety_distance = safety_distance;
-      if (cmd_run->count("--slow-distance")) run.slow_distance = slow_distance;
-      if (cmd_run->count("--fringe-clearance")) run.fringe_clearance = fringe_clearance;
-      if (cmd_run->count("--floor-edge-depth")) run.floor_edge_depth = floor_edge_depth;
-      if (cmd_run->count("--goal-clearance")) run.goal_clearance = goal_clearance;
-      if (retry_frontiers) run.retry_frontiers = true;
-      if (no_retry_frontiers) run.retry_frontiers = false;
       run.progress = !quiet;
       run.share_maps = true;
       const coopmap::RunResult r = coopmap::runWorld(run);

@@ -28,11 +28,13 @@ void writeRunReport(const RunOptions& opt, const std::string& world_name, const 
   auto row = [&](const std::string& k, const std::string& v) { d.summary.emplace_back(k, v); };
   row("world file", opt.world_file);
   row("robots", std::to_string(result.robots.size()));
-  row("mode", !opt.explore ? "scripted routes"
-              : result.cooperative
-                  ? "autonomous, cooperative: sorties of " + fixed(opt.sortie_budget_m, 0) +
-                        " m, home-base protocol after each"
-                  : "autonomous, one sortie");
+  row("mode",
+      !opt.explore ? "scripted routes"
+      : result.cooperative
+          ? "autonomous, cooperative: sorties of " +
+                fixed(result.mission_settings ? result.mission_settings->sortie_budget_m : 0.0, 0) +
+                " m, home-base protocol after each"
+          : "autonomous, one sortie");
   row("simulated time",
       fixed(result.sim_time_s, 1) + " s (" + fixed(result.real_time_factor, 1) + "x real time)");
   int collisions = 0;

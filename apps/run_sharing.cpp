@@ -156,9 +156,12 @@ void endSortie(RobotRun& r, LocalSharedMap& live, double now, double reapproach_
                 rep.posted ? ", posted" : "");
   std::string calibration;
   if (r.calibrate && r.calibration.weight_m() > 0.0) {
-    char c[128];
-    std::snprintf(c, sizeof c, "; odometry calibration: heading drift %.4f rad/m, turn scale %.4f",
-                  r.calibration.bias().heading_drift, r.calibration.bias().turn_scale);
+    char c[160];
+    std::snprintf(c, sizeof c,
+                  "; odometry calibration: heading drift %.4f rad/m, turn scale %.4f, distance "
+                  "scale %.4f",
+                  r.calibration.bias().heading_drift, r.calibration.bias().turn_scale,
+                  r.calibration.bias().distance_scale);
     calibration = c;
   }
   r.result.sortie_log.push_back(std::string(line) + " (" + rep.method + calibration + ")");

@@ -110,11 +110,15 @@ void writeOutputs(const RunOptions& opt, const sim::World& world, const RunResul
   }
   if (const auto& m = result.mission_settings) {
     j.beginObject("mission_settings");
+    j.value("sortie_budget_m", m->sortie_budget_m);
     j.value("first_sortie_budget_m", m->first_sortie_budget_m);
     j.value("safety_distance", m->safety_distance).value("slow_distance", m->slow_distance);
     j.value("fringe_clearance", m->fringe_clearance).value("goal_clearance", m->goal_clearance);
     j.value("retry_frontiers", m->retry_frontiers).value("floor_edge_depth", m->floor_edge_depth);
-    j.value("shaped_closures", m->shaped_closures);
+    j.value("shaped_closures", m->shaped_closures).value("bump_away", m->bump_away);
+    j.value("visited_radius", m->visited_radius);
+    j.value("calibrate_distance_scale", m->calibrate_distance_scale);
+    j.value("passage_width", m->passage_width).value("planning_margin", m->planning_margin);
     j.endObject();
   }
   j.value("sim_time_s", result.sim_time_s).value("wall_time_s", result.wall_time_s);
@@ -196,7 +200,7 @@ RunResult runWorld(const RunOptions& opt) {
   // Cooperative autonomous runs share their map sortie by sortie, during the run.
   const bool cooperative =
       opt.explore && opt.max_sorties > 1 && world.home_base.corners.size() == 2;
-  if (opt.explore && !(opt.sortie_budget_m > 0.0))
+  if (opt.explore && opt.sortie_budget_m && !(*opt.sortie_budget_m > 0.0))
     throw std::invalid_argument("--sortie-budget: expected a positive number of metres");
   if (opt.explore && opt.max_sorties < 1)
     throw std::invalid_argument("--sorties: expected at least 1");
@@ -244,9 +248,11 @@ RunResult runWorld(const RunOptions& opt) {
     if (opt.explore) {
       MissionConfig mission;
       mission.planning = PlanningMapConfig::forRobot(model.description);
-      mission.planning.margin = opt.planning_margin;
+      mission.planning.margin =
+          opt.planning_margin.value_or(world.exploration.planning_margin.value_or(0.05));
       mission.planner.seed = static_cast<uint32_t>(opt.seed + i);
-      mission.budget_m = opt.sortie_budget_m;
+      mission.budget_m =
+          opt.sortie_budget_m.value_or(world.exploration.sortie_budget_m.value_or(25.0));
       mission.budget_s = opt.sortie_budget_s;
       // The command line's settings, else the world's, else the defaults.
       const sim::World::Exploration& we = world.exploration;
@@ -264,8 +270,12 @@ RunResult runWorld(const RunOptions& opt) {
           pick(opt.goal_clearance, we.goal_clearance, mission.frontiers.goal_clearance);
       mission.retry_frontiers =
           pick(opt.retry_frontiers, we.retry_frontiers, mission.retry_frontiers);
+      mission.bump_away = pick(opt.bump_away, we.bump_away, mission.bump_away);
+      mission.visited_radius = pick(opt.visited_radius, we.visited_radius, mission.visited_radius);
+      mission.passage_width = pick(opt.passage_width, we.passage_width, mission.passage_width);
       mission.validate();
       settings = RunResult::MissionSettings{
+          mission.budget_m,
           mission.first_budget_m,
           mission.safety_distance,
           mission.slow_distance,
@@ -273,7 +283,12 @@ RunResult runWorld(const RunOptions& opt) {
           mission.frontiers.goal_clearance,
           mission.retry_frontiers,
           mapper_config.radial.floor_edge_depth,
-          pick(opt.shaped_closures, we.shaped_closures, opt.cooperation.closure_shape)};
+          pick(opt.shaped_closures, we.shaped_closures, opt.cooperation.closure_shape),
+          mission.bump_away,
+          mission.visited_radius,
+          pick(opt.calibrate_distance_scale, we.calibrate_distance_scale, true),
+          mission.passage_width,
+          mission.planning.margin};
       mission.max_sorties = cooperative ? opt.max_sorties : 1;
       r.mission = std::make_unique<MissionAgent>(spec.start, mission);
       if (cooperative) {
@@ -282,6 +297,7 @@ RunResult runWorld(const RunOptions& opt) {
         r.coop = std::make_unique<HomeBaseCooperation>(
             spec.name, nominalHomeBase(world), world.home_base.arm_length, &*live, cooperation);
         r.calibrate = opt.calibrate_odometry;
+        r.calibration = OdometryCalibration(settings->calibrate_distance_scale);
       }
     }
     r.result.name = spec.name;
@@ -417,8 +433,9 @@ RunResult runWorld(const RunOptions& opt) {
         r.mission->setTeammates(std::move(others), &r == &runs.front());
         if (opt.coordinate) r.mission->setTeammateGoals(goals);
       }
+      const RobotStatus status = r.driver->status();
       const MotionCommand cmd = r.mission ? r.mission->update(t, steer, r.mapper->grid(), r.latest,
-                                                              r.driver->status().bumped)
+                                                              status.bumped, status.bump_bearing)
                                           : r.follower->update(steer, t);
       r.latest = nullptr;
       if (r.coop && r.mission->phase() == MissionPhase::kAtHome)

@@ -41,7 +41,8 @@ struct RunOptions {
   // localizes at the home base, posts its corrected traverse to the shared map and imports
   // it (core/agent/cooperation.h), then goes again, at most max_sorties times. With
   // max_sorties 1 it explores once and the maps are shared after the run (share_maps).
-  double sortie_budget_m = 25.0;
+  // m of a sortie; unset: the world's mission setting, else 25.
+  std::optional<double> sortie_budget_m;
   // Unset: the world's mission settings (World::Exploration), else MissionConfig's and
   // FrontierConfig's defaults.
   std::optional<double> first_sortie_budget_m;  // 0: sortie_budget_m
@@ -52,6 +53,9 @@ struct RunOptions {
   std::optional<bool> retry_frontiers;          // MissionConfig::retry_frontiers
   std::optional<double> floor_edge_depth;       // m: RadialMapConfig::floor_edge_depth (0: off)
   std::optional<bool> shaped_closures;          // CooperationConfig::closure_shape
+  std::optional<bool> bump_away;                // MissionConfig::bump_away
+  std::optional<double> visited_radius;         // m: MissionConfig::visited_radius (0: radius)
+  std::optional<double> passage_width;          // m: MissionConfig::passage_width (0: off)
   double sortie_budget_s = 400.0;               // s: a robot stuck (wheels slipping) goes home too
   int max_sorties = 12;
   // A robot whose first fix at the end of a sortie puts it farther than this (m) from its
@@ -66,13 +70,17 @@ struct RunOptions {
   // Calibrate the odometry online from each sortie's fitted systematic errors
   // (core/correction/odometry_calibration.h); false: raw odometry every sortie.
   bool calibrate_odometry = true;
+  // Whether that calibration includes the distance scale (OdometryCalibration); unset: the
+  // world's mission setting, else true.
+  std::optional<bool> calibrate_distance_scale;
   // With more than one robot: frontiers near teammates' goals are worth less, and a robot
   // whose own part is explored goes home to share it (MissionConfig::claimed_return_factor);
   // false: each robot explores as if alone.
   bool coordinate = true;
   // m kept clear around the robot's body when exploring robots plan (on top of its radius;
   // PlanningMapConfig::margin): room for the estimate's drift between home-base fixes.
-  double planning_margin = 0.05;
+  // Unset: the world's mission setting, else 0.05.
+  std::optional<double> planning_margin;
   // m: returns this close to where a teammate reports itself are the teammate, and are not
   // logged or posted (Mapper::setTeammates); 0: teammates are logged like the world. 0.8 m:
   // a report is off by the teammate's drift, and stereo fattens its body; with 0.5 m, home-
@@ -164,11 +172,17 @@ struct RunResult {
   bool cooperative = false;  // the shared map was built during the run, sortie by sortie
   // The mission settings the run used (command line, else the world's, else defaults).
   struct MissionSettings {
+    double sortie_budget_m = 0.0;
     double first_sortie_budget_m = 0.0, safety_distance = 0.0, slow_distance = 0.0;
     double fringe_clearance = 0.0, goal_clearance = 0.0;
     bool retry_frontiers = false;
     double floor_edge_depth = 0.0;
     bool shaped_closures = false;
+    bool bump_away = false;
+    double visited_radius = 0.0;
+    bool calibrate_distance_scale = true;
+    double passage_width = 0.0;
+    double planning_margin = 0.0;
   };
   std::optional<MissionSettings> mission_settings;  // with --explore
   std::vector<TimelineSample> timeline;

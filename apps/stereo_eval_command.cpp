@@ -30,13 +30,15 @@ void writePng(const std::string& path, const cv::Mat& img) {
 // Accumulates scores over frames (counts add up; rates are recomputed).
 struct Accumulator {
   DisparityScore total;
-  double abs_sum = 0.0;
+  double abs_sum = 0.0, signed_sum = 0.0;
   int frames = 0;
   void add(const DisparityScore& s) {
     total.evaluated += s.evaluated;
     total.valid += s.valid;
     total.bad += s.bad;
     abs_sum += s.mae * s.valid;
+    total.good += s.good;
+    signed_sum += s.bias * s.good;
     ++frames;
   }
   DisparityScore result() const {
@@ -44,6 +46,7 @@ struct Accumulator {
     r.density = r.evaluated ? double(r.valid) / r.evaluated : 0.0;
     r.bad_pixel_rate = r.valid ? double(r.bad) / r.valid : 0.0;
     r.mae = r.valid ? abs_sum / r.valid : 0.0;
+    r.bias = r.good ? signed_sum / r.good : 0.0;
     return r;
   }
 };

@@ -204,8 +204,14 @@ Pose2 Simulator::odometry(int robot) const { return robots_.at(robot).odometry->
 RobotStatus Simulator::status(int robot) const {
   const RobotState& r = robots_.at(robot);
   const int i = r.physics_index;
-  return {physics_->inContact(i), physics_->contactEvents(i),
-          r.segment.kind != MotionCommand::Kind::kVelocity};
+  RobotStatus s{physics_->inContact(i), physics_->contactEvents(i),
+                r.segment.kind != MotionCommand::Kind::kVelocity, std::nullopt};
+  if (const std::optional<Eigen::Vector2d> p = physics_->contactPoint(i)) {
+    // The bump panel pressed: the bearing of the contact point from the base's centre.
+    const Eigen::Vector2d local = physics_->truePose(i).inverse() * *p;
+    s.bump_bearing = std::atan2(local.y(), local.x());
+  }
+  return s;
 }
 
 const RobotDescription& Simulator::description(int robot) const {

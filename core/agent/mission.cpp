@@ -62,6 +62,12 @@ void MissionConfig::validate() const {
           slow_fraction);
   require("first_budget_m", first_budget_m >= 0.0, "a number >= 0 (0: budget_m)", first_budget_m);
   require("bump_width", bump_width >= 0.0, "a number >= 0", bump_width);
+  require("passage_width", passage_width >= 0.0, "a number >= 0 (0: off)", passage_width);
+  positive("passage_lookahead", passage_lookahead);
+  positive("passage_radius", passage_radius);
+  positive("passage_wait_s", passage_wait_s);
+  require("visited_radius", visited_radius >= 0.0, "a number >= 0 (0: the robot's radius)",
+          visited_radius);
   require("claimed_return_factor", claimed_return_factor >= 0.0 && claimed_return_factor <= 1.0,
           "a number in [0, 1]", claimed_return_factor);
   require("min_sortie_m", min_sortie_m >= 0.0, "a number >= 0", min_sortie_m);
@@ -134,12 +140,21 @@ PlanningMap MissionAgent::planningMap(const OccupancyGrid& map, bool allow_unkno
   // the robot), or saw a weak obstacle there (a stereo mismatch). Not where they saw an
   // obstacle again and again: the estimate drifts, so "where it has been" can lie on a table
   // it saw a minute ago.
+  // With a narrow visited strip, the whole footprint where the robot stands now (the planner
+  // starts there).
   const MapLimits& lim = map.limits();
+  const double footprint =
+      config_.visited_radius > 0.0 && config_.visited_radius < config_.planning.robot_radius
+          ? config_.planning.robot_radius
+          : 0.0;
   Grid<CellState> states(lim, CellState::kUnknown);
   for (int iy = 0; iy < lim.height; ++iy)
     for (int ix = 0; ix < lim.width; ++ix) {
       const CellState seen = map.state(ix, iy);
-      const bool visited = !visited_.cells.empty() && visited_.at(ix, iy);
+      const bool visited =
+          (!visited_.cells.empty() && visited_.at(ix, iy)) ||
+          (footprint > 0.0 && (lim.cellCenter(ix, iy) - last_pose_.translation()).squaredNorm() <=
+                                  footprint * footprint);
       const bool firm =
           seen == CellState::kOccupied && map.logOdds(ix, iy) >= config_.firm_log_odds;
       states.at(ix, iy) = visited && !firm ? CellState::kFree : seen;
@@ -157,7 +172,9 @@ PlanningMap MissionAgent::planningMap(const OccupancyGrid& map, bool allow_unkno
 void MissionAgent::markVisited(const OccupancyGrid& map, const Pose2& odometry) {
   const MapLimits& lim = map.limits();
   if (visited_.cells.empty()) visited_ = GridU8(lim, 0);
-  fillDisc(visited_, odometry.translation(), config_.planning.robot_radius, uint8_t{1});
+  const double r =
+      config_.visited_radius > 0.0 ? config_.visited_radius : config_.planning.robot_radius;
+  fillDisc(visited_, odometry.translation(), r, uint8_t{1});
 }
 
 std::optional<Eigen::Vector2d> MissionAgent::nearestFreeCell(const PlanningMap& planning,
@@ -325,55 +342,9 @@ void MissionAgent::finish(const std::string& reason) {
   last_event_ = reason;
 }
 
-void MissionAgent::setTeammates(std::vector<Eigen::Vector2d> positions, bool priority) {
-  teammates_ = std::move(positions);
-  priority_ = priority;
-}
-
-void MissionAgent::setTeammateGoals(const std::vector<Eigen::Vector2d>& goals) {
-  for (const Eigen::Vector2d& g : goals) {
-    const bool known = std::any_of(claims_.begin(), claims_.end(), [&](const Eigen::Vector2d& c) {
-      return (c - g).norm() < config_.frontiers.blacklist_radius;
-    });
-    if (!known) claims_.push_back(g);
-  }
-}
-
 std::optional<Eigen::Vector2d> MissionAgent::explorationGoal() const {
   if (phase_ == MissionPhase::kExplore && has_goal_) return goal_;
   return std::nullopt;
-}
-
-bool MissionAgent::teammateAhead(const Pose2& pose) const {
-  // The way ahead: the rest of the path being followed (or straight to the target).
-  std::vector<Eigen::Vector2d> way{pose.translation()};
-  if (follower_ && path_.waypoints.size() >= 2) {
-    for (size_t k = std::min(follower_->nextWaypoint() + 1, path_.waypoints.size() - 1);
-         k < path_.waypoints.size(); ++k)
-      way.push_back(path_.waypoints[k]);
-  } else {
-    way.push_back(target_.translation());
-  }
-  // A teammate stops this robot only where the way passes it closer than the planning map's
-  // disc allows: once planned around a teammate standing still, the robot drives on.
-  const double clear = 0.9 * (config_.team_radius + config_.planning.robot_radius);
-  auto nearWay = [&](const Eigen::Vector2d& p) {
-    for (size_t k = 0; k + 1 < way.size(); ++k) {
-      const Eigen::Vector2d a = way[k], ab = way[k + 1] - a;
-      const double t =
-          ab.squaredNorm() > 0.0 ? std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
-      if ((a + t * ab - p).norm() < clear) return true;
-    }
-    return false;
-  };
-  for (const Eigen::Vector2d& p : teammates_) {
-    const Eigen::Vector2d to = p - pose.translation();
-    if (to.norm() < config_.team_distance &&
-        std::abs(wrapAngle(std::atan2(to.y(), to.x()) - pose.theta)) < config_.team_half_angle &&
-        (to.norm() < config_.team_close || nearWay(p)))
-      return true;
-  }
-  return false;
 }
 
 void MissionAgent::returnAgain(const Pose2& home) {
@@ -388,7 +359,8 @@ void MissionAgent::returnAgain(const Pose2& home) {
 }
 
 MotionCommand MissionAgent::update(double now, const Pose2& odometry, const OccupancyGrid& map,
-                                   const RadialMap* latest, bool bumped) {
+                                   const RadialMap* latest, bool bumped,
+                                   std::optional<double> bump_bearing) {
   if (start_time_ < 0.0) {
     start_time_ = sortie_start_ = now;
     last_pose_ = odometry;
@@ -405,21 +377,31 @@ MotionCommand MissionAgent::update(double now, const Pose2& odometry, const Occu
         nearest_ahead_ = std::min(nearest_ahead_, r.range);
   }
   // Touching something: back off, give the goal up, plan anew.
-  if (now < backoff_until_) return last_command_ = MotionCommand{-0.1, 0.0};
+  if (now < backoff_until_) return last_command_ = MotionCommand{backoff_speed_, 0.0};
   const bool moving = phase_ == MissionPhase::kExplore || phase_ == MissionPhase::kReturn;
   if (bumped && moving && backoff_until_ < 0.0) {
     ++safety_stops_;
     backoff_until_ = now + config_.backoff_s;
+    backoff_speed_ = -0.1;
     // The bumper found what the map missed (too low, too thin, or drift put it elsewhere):
     // an obstacle where the robot touched it, in the frame of its estimate like its map.
-    if (last_command_.linear != 0.0) {
+    std::optional<double> bearing;
+    if (config_.bump_away && bump_bearing) {
+      bearing = *bump_bearing;
+      if (std::cos(*bearing) < 0.0) backoff_speed_ = 0.1;  // touched behind: away is forwards
+    } else if (last_command_.linear != 0.0) {
+      bearing = last_command_.linear > 0.0 ? 0.0 : M_PI;
+    }
+    if (bearing) {
       const double edge = config_.planning.robot_radius + 0.5 * config_.bump_radius;
-      const double x = last_command_.linear > 0.0 ? edge : -edge;
+      const Eigen::Vector2d at(std::cos(*bearing), std::sin(*bearing));
+      const Eigen::Vector2d across(-at.y(), at.x());
       const int n = static_cast<int>(std::ceil(0.5 * config_.bump_width / config_.bump_radius));
-      for (int k = -n; k <= n; ++k)
-        bumps_.push_back(odometry * Eigen::Vector2d(x, std::clamp(k * config_.bump_radius,
-                                                                  -0.5 * config_.bump_width,
-                                                                  0.5 * config_.bump_width)));
+      for (int k = -n; k <= n; ++k) {
+        const double s = std::clamp(k * config_.bump_radius, -0.5 * config_.bump_width,
+                                    0.5 * config_.bump_width);
+        bumps_.push_back(odometry * Eigen::Vector2d(edge * at + s * across));
+      }
     }
     if (phase_ == MissionPhase::kExplore) {
       if (has_goal_) explorer_.blacklist(goal_);
@@ -427,7 +409,7 @@ MotionCommand MissionAgent::update(double now, const Pose2& odometry, const Occu
       follower_.reset();
     }
     last_event_ = "bumped: backing off";
-    return last_command_ = MotionCommand{-0.1, 0.0};
+    return last_command_ = MotionCommand{backoff_speed_, 0.0};
   }
   if (backoff_until_ >= 0.0 && now >= backoff_until_) {
     backoff_until_ = -1.0;
@@ -451,6 +433,19 @@ MotionCommand MissionAgent::update(double now, const Pose2& odometry, const Occu
       goHome(now, odometry, map);
     }
   }
+
+  // A teammate in or at the passage ahead (a door): wait until it is through and away.
+  if (config_.passage_width > 0.0 && moving && follower_ && last_command_.linear > 0.0 &&
+      now >= passage_next_ && passageHeld(odometry, map)) {
+    if (passage_wait_since_ < 0.0) {
+      passage_wait_since_ = now;
+      ++passage_waits_;
+      last_event_ = "teammate at the passage ahead: waiting";
+    }
+    if (now - passage_wait_since_ < config_.passage_wait_s) return MotionCommand::stop();
+    passage_next_ = now + config_.passage_wait_s;  // waited long enough: go, for a while
+  }
+  passage_wait_since_ = -1.0;
 
   // A teammate ahead: stop and wait; after a while plan around it.
   if (moving && follower_ && last_command_.linear > 0.0 && teammateAhead(odometry)) {

@@ -61,9 +61,17 @@ struct MissionConfig {
   // m: ... repeated across the robot's heading over this width (a bumper does not say how far
   // an edge goes on either side; a table edge the robot met head-on goes on).
   double bump_width = 0.5;
+  // With the bearing of the touch from the base (RobotStatus::bump_bearing): back off away
+  // from it (forwards from a touch behind) and draw what was touched at that bearing, spread
+  // across it. Off, or without a bearing: straight back against the command, drawn ahead.
+  bool bump_away = false;
   // Cells the robot has driven over count as free in its planning map unless the map holds
   // them occupied at least this firmly (log-odds in hundredths, OccupancyConfig).
   int firm_log_odds = 400;
+  // m: the strip of driven-over cells kept free is this wide either side of the path (0: the
+  // robot's radius). The whole footprint is free only where the robot stands now: a footprint
+  // dragged along a wall it scraped (its estimate a few cm off) clears the wall's cells.
+  double visited_radius = 0.0;
   // Sorties: with more than one, the budget is per sortie, and after each look at home the
   // mission waits (phase kAtHome) until the caller has localized it, corrected and shared
   // its traverse and imported the shared map (continueAfterFix), then goes again.
@@ -80,6 +88,15 @@ struct MissionConfig {
   // closer than its disc (once planned around, the robot drives on); nearer, always (what a
   // teammate reports is off by its drift until its next fix).
   double team_close = 0.6;
+  // Passages one robot at a time (a door): where the way ahead, within passage_lookahead,
+  // runs between obstacles (occupied cells) less than passage_width apart, and a teammate is
+  // within passage_radius of that place and nearer to it than this robot (or as near, and
+  // this robot has no priority), the robot stops until the teammate is through and away, at
+  // most passage_wait_s. A robot in the passage itself drives on. 0: off.
+  double passage_width = 0.0;      // m
+  double passage_lookahead = 1.5;  // m along the way
+  double passage_radius = 1.2;     // m
+  double passage_wait_s = 20.0;    // s
   // Bumped this many times on the way home within look_from_m of it, the robot looks at the
   // home base from where it is (the fix then takes it home).
   int max_return_bumps = 2;
@@ -111,9 +128,11 @@ class MissionAgent {
 
   // The command for now (s), given the odometry pose, the robot's map (odometry frame) and
   // the latest radial map (nullptr if none since the last call), and whether the bumpers
-  // touch something (then it backs off and gives the goal up).
+  // touch something (then it backs off and gives the goal up) and at what bearing (rad, robot
+  // frame) if the base says.
   MotionCommand update(double now, const Pose2& odometry, const OccupancyGrid& map,
-                       const RadialMap* latest, bool bumped = false);
+                       const RadialMap* latest, bool bumped = false,
+                       std::optional<double> bump_bearing = std::nullopt);
 
   // In phase kAtHome: the caller has dealt with the sortie; go again (phase kExplore) unless
   // exploration is complete or the sorties are spent (phase kDone). The robot's pose
@@ -130,6 +149,7 @@ class MissionAgent {
   // the right of way over them (e.g. the lower index). Call before update.
   void setTeammates(std::vector<Eigen::Vector2d> positions, bool priority);
   int teamStops() const { return team_stops_; }
+  int passageWaits() const { return passage_waits_; }  // times it waited for a passage
   // The frontier goals teammates are driving to now (map frame). They are remembered as
   // claimed until the robot imports the shared map (continueAfterFix).
   void setTeammateGoals(const std::vector<Eigen::Vector2d>& goals);
@@ -195,13 +215,25 @@ class MissionAgent {
   double team_wait_until_ = -1.0;  // waiting for a teammate ahead until then
   int team_stops_ = 0;
   bool teammateAhead(const Pose2& pose) const;
+  // The rest of the path being followed, from `pose` (or straight to the target).
+  std::vector<Eigen::Vector2d> wayAhead(const Pose2& pose) const;
+  // The first place within passage_lookahead along the way where it runs through a passage
+  // (see passage_width), if any; `here` says whether the robot stands in it now.
+  std::optional<Eigen::Vector2d> passageAhead(const Pose2& pose, const OccupancyGrid& map,
+                                              bool* here) const;
+  // A teammate holds the passage ahead: wait for it (passage_width).
+  bool passageHeld(const Pose2& pose, const OccupancyGrid& map) const;
+  double passage_wait_since_ = -1.0;  // waiting for a passage since then
+  double passage_next_ = -1.0;        // after a wait that timed out: no waiting until then
+  int passage_waits_ = 0;
   double travelled_ = 0.0;
   Pose2 last_pose_;
   bool exploration_complete_ = false;
   int goals_reached_ = 0, goals_failed_ = 0, safety_stops_ = 0;
   std::string last_event_;
   MotionCommand last_command_;
-  GridU8 visited_;  // cells the robot's body has covered: free, seen or not
+  GridU8 visited_;               // cells the robot's body has covered: free, seen or not
+  double backoff_speed_ = -0.1;  // m/s while backing off from a bump
 };
 
 }  // namespace coopmap

@@ -10,7 +10,7 @@ void OdometryCalibration::addSortie(const OdometryBias& residual, double length_
   const double w = length_m / (weight_m_ + length_m);
   bias_.heading_drift += w * residual.heading_drift;
   bias_.turn_scale += w * residual.turn_scale;
-  bias_.distance_scale += w * residual.distance_scale;
+  if (distance_scale_) bias_.distance_scale += w * residual.distance_scale;
   weight_m_ += length_m;
 }
 

@@ -16,6 +16,12 @@ namespace coopmap {
 
 class OdometryCalibration {
  public:
+  // `distance_scale` false: the distance scale is left uncalibrated (0), whatever the sorties
+  // find. A home-base fix does not observe it (an out-and-back path's distance errors
+  // cancel); only loop closures do, weakly, and a closure biased along a corridor turns into
+  // a scale error every later sortie drives on (README: the building's first sorties found
+  // +1.9 to +4.6 % where the odometry over-counts 1 %).
+  explicit OdometryCalibration(bool distance_scale = true) : distance_scale_(distance_scale) {}
   // What a corrected sortie found (residual errors of the odometry it ran on) over
   // `length_m` driven. Sorties shorter than min_length_m tell too little and are skipped.
   void addSortie(const OdometryBias& residual, double length_m, double min_length_m = 5.0);
@@ -28,6 +34,7 @@ class OdometryCalibration {
   Pose2 calibrate(const Pose2& raw);
 
  private:
+  bool distance_scale_ = true;
   OdometryBias bias_;
   double weight_m_ = 0.0;
   std::optional<Pose2> last_raw_;

@@ -77,6 +77,9 @@ struct RobotStatus {
   bool bumped = false;          // touching an obstacle now
   int contact_events = 0;       // count of distinct contacts since start
   bool segment_active = false;  // a turn or straight segment is under way
+  // rad, robot frame (CCW from ahead): where the base is touched, if it says (the B-14's
+  // bump panels ring the base; a base reporting only "pressed" leaves it empty).
+  std::optional<double> bump_bearing;
 };
 
 class RobotInterface {

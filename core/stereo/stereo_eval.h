@@ -8,8 +8,12 @@ namespace coopmap {
 struct DisparityScore {
   double bad_pixel_rate = 0.0;  // of the valid pixels with ground truth: |error| > threshold
   double mae = 0.0;             // mean absolute error (px) of those pixels
-  double density = 0.0;         // valid pixels / pixels with ground truth
-  int evaluated = 0;            // pixels with ground truth (inside the border)
+  // Mean signed error (px, estimate minus truth) of the good pixels (|error| <= threshold):
+  // a systematic sub-pixel offset, which turns into a range error growing with depth.
+  double bias = 0.0;
+  int good = 0;          // valid pixels with |error| <= threshold
+  double density = 0.0;  // valid pixels / pixels with ground truth
+  int evaluated = 0;     // pixels with ground truth (inside the border)
   int valid = 0;
   int bad = 0;
 };

@@ -134,7 +134,7 @@ void RflexRobot::command(const MotionCommand& cmd) {
 
 RobotStatus RflexRobot::status() const {
   std::lock_guard lock(mutex_);
-  return {bumped_, contact_events_, segment_active_};
+  return {bumped_, contact_events_, segment_active_, std::nullopt};
 }
 
 std::optional<std::string> RflexRobot::fault() const {

@@ -19,6 +19,7 @@ struct Robot {
   MotionCommand setpoint;                          // after the base's acceleration profile
   bool slip_linear = false, slip_angular = false;  // traction saturated this step
   bool contact = false;
+  Eigen::Vector2d contact_point{0.0, 0.0};  // world, while in contact
   int contact_events = 0;
   // What the robot touched in the last step (static world, people, robots) and the counts.
   std::array<bool, 3> touching_kind{};
@@ -249,6 +250,8 @@ void PhysicsWorld::step() {
     const bool any = touching[k][kStaticWorld] || touching[k][kPerson] || touching[k][kOtherRobot];
     if (any && !r.contact) ++r.contact_events;
     r.contact = any;
+    for (int kind = 0; kind < 3; ++kind)
+      if (touching[k][kind]) r.contact_point = {where[k][kind].x(), where[k][kind].y()};
     int* counts[3] = {&r.counts.static_world, &r.counts.people, &r.counts.robots};
     for (int kind = 0; kind < 3; ++kind) {
       if (touching[k][kind] && !r.touching_kind[kind]) {
@@ -285,6 +288,11 @@ BodyVelocity PhysicsWorld::wheelVelocity(int robot) const {
 }
 
 bool PhysicsWorld::inContact(int robot) const { return impl_->robots.at(robot)->contact; }
+std::optional<Eigen::Vector2d> PhysicsWorld::contactPoint(int robot) const {
+  const Robot& r = *impl_->robots.at(robot);
+  if (!r.contact) return std::nullopt;
+  return r.contact_point;
+}
 const std::vector<ContactEvent>& PhysicsWorld::contactLog(int robot) const {
   return impl_->robots.at(robot)->log;
 }

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -71,9 +72,11 @@ class PhysicsWorld {
   // What the wheels turn at (robot frame): the body's motion while they grip, the drive's
   // setpoint while they slip (traction saturated). Encoders measure this.
   BodyVelocity wheelVelocity(int robot) const;
-  bool inContact(int robot) const;               // touching a solid (not the floor) now
-  int contactEvents(int robot) const;            // new contacts since start
-  ContactCounts contactCounts(int robot) const;  // the same, by what was touched
+  bool inContact(int robot) const;  // touching a solid (not the floor) now
+  // Where the robot touches a solid now (a contact point, world), if it does.
+  std::optional<Eigen::Vector2d> contactPoint(int robot) const;
+  int contactEvents(int robot) const;                            // new contacts since start
+  ContactCounts contactCounts(int robot) const;                  // the same, by what was touched
   const std::vector<ContactEvent>& contactLog(int robot) const;  // each kind's events, in order
   double stepSize() const { return step_; }
   double time() const { return time_; }

@@ -181,15 +181,20 @@ struct World {
   // unset: coopmap's defaults; the command line overrides them). A building of long
   // corridors wants other settings than a room: see worlds/lab_corridor.yaml.
   struct Exploration {
-    std::optional<double> sortie_budget_m;        // m of a sortie
-    std::optional<double> first_sortie_budget_m;  // m of the first (calibration) sortie
-    std::optional<double> safety_distance;        // m: MissionConfig::safety_distance
-    std::optional<double> slow_distance;          // m: MissionConfig::slow_distance
-    std::optional<double> fringe_clearance;       // m: FrontierConfig::fringe_clearance
-    std::optional<double> goal_clearance;         // m: FrontierConfig::goal_clearance
-    std::optional<bool> retry_frontiers;          // MissionConfig::retry_frontiers
-    std::optional<double> floor_edge_depth;       // m: RadialMapConfig::floor_edge_depth
-    std::optional<bool> shaped_closures;          // CooperationConfig::closure_shape
+    std::optional<double> sortie_budget_m;         // m of a sortie
+    std::optional<double> first_sortie_budget_m;   // m of the first (calibration) sortie
+    std::optional<double> safety_distance;         // m: MissionConfig::safety_distance
+    std::optional<double> slow_distance;           // m: MissionConfig::slow_distance
+    std::optional<double> fringe_clearance;        // m: FrontierConfig::fringe_clearance
+    std::optional<double> goal_clearance;          // m: FrontierConfig::goal_clearance
+    std::optional<bool> retry_frontiers;           // MissionConfig::retry_frontiers
+    std::optional<double> floor_edge_depth;        // m: RadialMapConfig::floor_edge_depth
+    std::optional<bool> shaped_closures;           // CooperationConfig::closure_shape
+    std::optional<bool> bump_away;                 // MissionConfig::bump_away
+    std::optional<double> visited_radius;          // m: MissionConfig::visited_radius
+    std::optional<bool> calibrate_distance_scale;  // OdometryCalibration's distance scale
+    std::optional<double> passage_width;           // m: MissionConfig::passage_width
+    std::optional<double> planning_margin;  // m: PlanningMapConfig::margin of exploring robots
   } exploration;
 
   // The floor's rectangles: `floor_areas`, or the bounding rectangle if that is empty.

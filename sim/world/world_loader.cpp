@@ -217,7 +217,8 @@ World parseWorld(const std::string& text, const std::string& file) {
     if (mission->isMap()) {
       mission->allowOnly({"mode", "sortie_budget_m", "first_sortie_budget_m", "safety_distance",
                           "slow_distance", "fringe_clearance", "goal_clearance", "retry_frontiers",
-                          "floor_edge_depth", "shaped_closures"});
+                          "floor_edge_depth", "shaped_closures", "bump_away", "visited_radius",
+                          "calibrate_distance_scale", "passage_width", "planning_margin"});
       World::Exploration& e = w.exploration;
       auto metres = [&](const char* key, double lo, double hi, const char* what,
                         std::optional<double>& out) {
@@ -231,10 +232,17 @@ World parseWorld(const std::string& text, const std::string& file) {
       metres("fringe_clearance", 0.0, 5.0, "metres in [0, 5] (0: off)", e.fringe_clearance);
       metres("goal_clearance", 0.0, 5.0, "metres in [0, 5] (0: off)", e.goal_clearance);
       metres("floor_edge_depth", 0.0, 5.0, "metres in [0, 5] (0: off)", e.floor_edge_depth);
+      metres("passage_width", 0.0, 5.0, "metres in [0, 5] (0: off)", e.passage_width);
+      metres("planning_margin", 0.0, 1.0, "metres in [0, 1]", e.planning_margin);
+      metres("visited_radius", 0.0, 1.0, "metres in [0, 1] (0: the robot's radius)",
+             e.visited_radius);
       if (mission->has("retry_frontiers"))
         e.retry_frontiers = (*mission)["retry_frontiers"].asBool();
       if (mission->has("shaped_closures"))
         e.shaped_closures = (*mission)["shaped_closures"].asBool();
+      if (mission->has("bump_away")) e.bump_away = (*mission)["bump_away"].asBool();
+      if (mission->has("calibrate_distance_scale"))
+        e.calibrate_distance_scale = (*mission)["calibrate_distance_scale"].asBool();
     }
   }
   if (root.has("seed")) w.seed = static_cast<uint64_t>(root["seed"].asInt(0, 1 << 30));

@@ -81,6 +81,49 @@ TEST(MissionTest, StopsForGoodAfterTooManyBumpsInASortie) {
   EXPECT_EQ(mission.safetyStops(), 2);
 }
 
+// With bump_away and a bearing from the base, the robot backs off away from the touch: a
+// touch behind while driving forward (something walked into it) sends it forwards. Without
+// either, it backs off against its command.
+TEST(MissionTest, BacksOffAwayFromWhereTheBaseWasTouched) {
+  const Pose2 home(2.0, 3.0, 0.0);
+  const OccupancyGrid map = lookedAround(Pose2(1.0, 3.0, 0.0));
+  // bump_away, the bearing reported, whether the back-off is forwards
+  const struct {
+    bool away;
+    std::optional<double> bearing;
+    bool forwards;
+  } cases[] = {{true, M_PI, true},  {true, -2.5, true},          {true, 0.3, false},
+               {true, -1.2, false}, {true, std::nullopt, false}, {false, M_PI, false}};
+  for (const auto& k : cases) {
+    MissionConfig c;
+    c.look_wait_s = 0.5;
+    c.look_turn_rate = 1.5;
+    c.bump_away = k.away;
+    c.planner.seed = 7;
+    MissionAgent mission(home, c);
+    Pose2 pose = home;
+    const double dt = 0.05;
+    bool bumped = false;
+    for (int step = 0; step < 4000 && !bumped; ++step) {
+      const double now = step * dt;
+      MotionCommand cmd = mission.update(now, pose, map, nullptr);
+      if (mission.phase() == MissionPhase::kExplore && cmd.linear > 0.0) {
+        bumped = true;
+        const double t = now + dt;
+        cmd = mission.update(t, pose, map, nullptr, true, k.bearing);
+        EXPECT_EQ(cmd.linear > 0.0, k.forwards)
+            << "away " << k.away << ", bearing " << k.bearing.value_or(99) << ": " << cmd.linear;
+        EXPECT_NEAR(std::abs(cmd.linear), 0.1, 1e-9);
+        // It keeps backing off the same way while the back-off lasts.
+        const MotionCommand later = mission.update(t + 0.5, pose, map, nullptr);
+        EXPECT_EQ(later.linear, cmd.linear);
+      }
+      pose = pose * Pose2(cmd.linear * dt, 0.0, cmd.angular * dt);
+    }
+    EXPECT_TRUE(bumped) << "never drove forward to explore";
+  }
+}
+
 TEST(MissionTest, GoesHomeToShareWhenTheFrontiersLeftAreTeammates) {
   // A robot with sorties explores; once it has driven min_sortie_m, a teammate claims every
   // frontier (its goals all over the map): the robot goes home to share its part, not
@@ -146,19 +189,26 @@ OccupancyGrid wallWithTheWayRoundUnknown() {
   return map;
 }
 
+// Quick looks at home and a first sortie that ends after 0.5 m, of two sorties: the tests
+// below carry the robot elsewhere as it sets off, and watch its way home.
+MissionConfig quickFirstSortie() {
+  MissionConfig c;
+  c.look_wait_s = 0.2;
+  c.look_turn_rate = 3.0;
+  c.first_budget_m = 0.5;
+  c.max_sorties = 2;
+  c.planner.seed = 5;
+  return c;
+}
+
 // Runs a mission whose first sortie ends at once, carried to (3.5, 3) east of the wall, home
 // at (2, 3) west of it. Returns, for its way home east of the wall: the farthest north it
 // went, and the nearest it came to home.
 std::pair<double, double> wayHome(double max_home_detour) {
   const Pose2 home(2.0, 3.0, 0.0);
   const OccupancyGrid map = wallWithTheWayRoundUnknown();
-  MissionConfig c;
-  c.look_wait_s = 0.2;
-  c.look_turn_rate = 3.0;
-  c.first_budget_m = 0.5;
-  c.max_sorties = 2;
+  MissionConfig c = quickFirstSortie();
   c.max_home_detour = max_home_detour;
-  c.planner.seed = 5;
   MissionAgent mission(home, c);
   Pose2 pose = home;
   const double dt = 0.05;
@@ -186,6 +236,68 @@ TEST(MissionTest, DoesNotGoHomeTheLongWayRoundThroughTheUnknown) {
   EXPECT_LT(nearest, 1.0) << "did not come to the wall by home";
   // Allowed any detour, it does go round: the bound is what keeps it out.
   EXPECT_GT(wayHome(100.0).first, 6.0);
+}
+
+// A wall at x 2.5-2.6 with a door 0.9 m wide at y 2.55-3.45; everything seen and free else.
+OccupancyGrid wallWithADoor() {
+  const MapLimits lim = MapLimits::covering({0.0, 0.0}, {8.0, 6.0}, 0.05);
+  OccupancyGrid map(lim, OccupancyConfig{});
+  std::vector<int16_t> lo(lim.size(), -500);
+  std::vector<uint8_t> seen(lim.size(), 1);
+  for (int iy = 0; iy < lim.height; ++iy)
+    for (int ix = 0; ix < lim.width; ++ix) {
+      const Eigen::Vector2d c = lim.cellCenter(ix, iy);
+      if (c.x() > 2.5 && c.x() < 2.6 && (c.y() < 2.55 || c.y() > 3.45)) lo[lim.index(ix, iy)] = 500;
+    }
+  map.assign(lo, seen);
+  return map;
+}
+
+// A robot on its way home west through the door, a teammate standing just beyond it
+// (nearer the door) for the first `hold_s` of the way home. Returns the robot's least x
+// while the teammate stands there, and its least x by the end.
+std::pair<double, double> throughTheDoor(double passage_width, double hold_s,
+                                         int* waits = nullptr) {
+  const Pose2 home(1.0, 3.0, 0.0);
+  const OccupancyGrid map = wallWithADoor();
+  MissionConfig c = quickFirstSortie();
+  c.passage_width = passage_width;
+  MissionAgent mission(home, c);
+  Pose2 pose = home;
+  const double dt = 0.05;
+  double held = 1e9, least = 1e9, return_start = -1.0;
+  for (int step = 0; step < 20000 && mission.phase() != MissionPhase::kAtHome; ++step) {
+    const double now = step * dt;
+    const MissionPhase before = mission.phase();
+    if (before == MissionPhase::kReturn && return_start < 0.0) return_start = now;
+    const bool holding = return_start >= 0.0 && now - return_start < hold_s;
+    // 1.05 m from the door's middle, 0.9 m off the way along y = 3: no teammate-ahead stop.
+    mission.setTeammates({holding ? Eigen::Vector2d(2.0, 3.9) : Eigen::Vector2d(7.5, 5.5)}, false);
+    const MotionCommand cmd = mission.update(now, pose, map, nullptr);
+    if (before == MissionPhase::kLookAtHome && mission.phase() == MissionPhase::kExplore)
+      pose = Pose2(4.5, 3.0, 0.0);  // carried east of the wall
+    pose = pose * Pose2(cmd.linear * dt, 0.0, cmd.angular * dt);
+    if (return_start >= 0.0) {
+      least = std::min(least, pose.x);
+      if (holding) held = std::min(held, pose.x);
+    }
+  }
+  if (waits) *waits = mission.passageWaits();
+  return {held, least};
+}
+
+TEST(MissionTest, WaitsAtADoorWhileATeammateNearerToItGoesThrough) {
+  int waits = 0;
+  const auto [held, least] = throughTheDoor(1.2, 15.0, &waits);
+  EXPECT_GT(held, 2.6 + 0.178) << "entered the door while the teammate stood at it";
+  EXPECT_LT(least, 1.5) << "did not go through once the teammate had gone";
+  EXPECT_GE(waits, 1);
+  // Off, the same robot goes through with the teammate there.
+  const auto [held_off, least_off] = throughTheDoor(0.0, 15.0);
+  EXPECT_LT(held_off, 2.4);
+  EXPECT_LT(least_off, 1.5);
+  // It waits at most passage_wait_s (20 s) for a teammate that stays.
+  EXPECT_LT(throughTheDoor(1.2, 1e9).second, 1.5) << "waited for good";
 }
 
 TEST(MissionTest, FrontiersLeftButOutOfReachThisSortieAreTriedAgainNextSortie) {

@@ -71,5 +71,23 @@ TEST(OdometryCalibrationTest, ResidualsAreAveragedByDistance) {
   EXPECT_NEAR(c.bias().heading_drift, 0.0055, 1e-12);
 }
 
+TEST(OdometryCalibrationTest, TheDistanceScaleIsLeftAloneWhenAskedTo) {
+  OdometryBias found;
+  found.heading_drift = 0.005;
+  found.distance_scale = 0.04;
+  OdometryCalibration with, without(false);
+  with.addSortie(found, 10.0);
+  without.addSortie(found, 10.0);
+  EXPECT_DOUBLE_EQ(with.bias().distance_scale, 0.04);
+  EXPECT_DOUBLE_EQ(without.bias().distance_scale, 0.0);
+  EXPECT_DOUBLE_EQ(without.bias().heading_drift, 0.005);
+  // 10 m straight on raw odometry: without the scale the calibrated pose is 10 m from the
+  // start (bent a little by the heading drift), with it 4 % less.
+  with.calibrate(Pose2());
+  without.calibrate(Pose2());
+  EXPECT_NEAR(without.calibrate(Pose2(10.0, 0.0, 0.0)).translation().norm(), 10.0, 0.01);
+  EXPECT_NEAR(with.calibrate(Pose2(10.0, 0.0, 0.0)).translation().norm(), 10.0 / 1.04, 0.05);
+}
+
 }  // namespace
 }  // namespace coopmap

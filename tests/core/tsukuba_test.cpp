@@ -58,5 +58,22 @@ TEST(TsukubaTest, TrinocularBadPixelRateStaysUnderThreePercent) {
   EXPECT_LT(tri.bad_pixel_rate, 0.5 * single.bad_pixel_rate);
 }
 
+// The score's bias is the mean signed error of the good pixels: a sub-pixel offset shows,
+// outliers (bad pixels) do not drag it.
+TEST(DisparityScoreTest, BiasIsTheMeanSignedErrorOfTheGoodPixels) {
+  cv::Mat truth(10, 10, CV_32F, cv::Scalar(8.0f));
+  cv::Mat disparity = truth + 0.25f;
+  disparity.at<float>(0, 0) = 20.0f;  // bad: off by 12 px
+  disparity.at<float>(0, 1) = 0.0f;   // invalid
+  truth.at<float>(0, 2) = 0.0f;       // no truth
+  const DisparityScore s = scoreDisparity(disparity, truth);
+  EXPECT_EQ(s.evaluated, 99);
+  EXPECT_EQ(s.valid, 98);
+  EXPECT_EQ(s.bad, 1);
+  EXPECT_EQ(s.good, 97);
+  EXPECT_NEAR(s.bias, 0.25, 1e-6);
+  EXPECT_NEAR(scoreDisparity(truth - 0.5f, truth).bias, -0.5, 1e-6);
+}
+
 }  // namespace
 }  // namespace coopmap

@@ -59,8 +59,7 @@ inline const RecordedRun& recordedRun() {
   static const RecordedRun run = [] {
     const std::filesystem::path base = testTempDir() / "run";
     RunOptions o;
-    o.world_file = writeTestWorld("recorded_room_" + std::to_string(::getpid()), kRecordedRoom,
-                                  "[1.2, 0.0], [1.2, -0.8]");
+    o.world_file = writeTestWorld("recorded_room", kRecordedRoom, "[1.2, 0.0], [1.2, -0.8]");
     o.seed = 7;
     o.duration = 8.0;
     o.odometry = "drifting";

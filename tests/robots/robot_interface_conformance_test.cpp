@@ -1,6 +1,4 @@
 // The RobotInterface conformance suite on the simulated B-14 and on the replay driver.
-#include <unistd.h>
-
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -26,7 +24,7 @@ DriverUnderTest makeSimDriver() {
     std::unique_ptr<SimRobot> robot;
   };
   const std::string world_file =
-      writeTestWorld("conformance_room_" + std::to_string(::getpid()),
+      writeTestWorld("conformance_room",
                      R"(floor: {min: [-2, -2], max: [2, 2], texture: carpet}
 walls:
   - {from: [2, -2], to: [2, 2], thickness: 0.1, height: 2.5, texture: poster}

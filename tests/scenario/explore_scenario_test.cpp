@@ -7,11 +7,13 @@
 // Seed 3 stops at the start: stereo mismatches around the robot in its first turn leave it
 // no reachable frontier.
 #include <cstdio>
+#include <stdexcept>
 
 #include <gtest/gtest.h>
 
 #include "apps/run_world.h"
 #include "core/agent/mission.h"
+#include "tests/support/test_world.h"
 
 namespace coopmap {
 namespace {
@@ -55,7 +57,16 @@ TEST(ExploreScenarioTest, TheBuildingsMissionSettingsApplyUnlessTheCommandLineSa
   EXPECT_TRUE(r.mission_settings->retry_frontiers);
   EXPECT_EQ(r.mission_settings->floor_edge_depth, 1.5);
   EXPECT_TRUE(r.mission_settings->shaped_closures);
+  EXPECT_TRUE(r.mission_settings->bump_away);
+  EXPECT_EQ(r.mission_settings->visited_radius, 0.09);
+  EXPECT_FALSE(r.mission_settings->calibrate_distance_scale);
+  EXPECT_EQ(r.mission_settings->passage_width, 1.2);
+  EXPECT_EQ(r.mission_settings->sortie_budget_m, 25.0);
+  EXPECT_EQ(r.mission_settings->planning_margin, 0.12);
   o.safety_distance = 0.6;
+  o.passage_width = 0.0;
+  o.calibrate_distance_scale = true;
+  o.bump_away = false;
   o.retry_frontiers = false;
   o.floor_edge_depth = 0.0;
   r = runWorld(o);
@@ -64,6 +75,10 @@ TEST(ExploreScenarioTest, TheBuildingsMissionSettingsApplyUnlessTheCommandLineSa
   EXPECT_EQ(r.mission_settings->safety_distance, 0.6);
   EXPECT_FALSE(r.mission_settings->retry_frontiers);
   EXPECT_EQ(r.mission_settings->slow_distance, 1.0);
+  EXPECT_FALSE(r.mission_settings->bump_away);
+  EXPECT_EQ(r.mission_settings->visited_radius, 0.09);
+  EXPECT_TRUE(r.mission_settings->calibrate_distance_scale);
+  EXPECT_EQ(r.mission_settings->passage_width, 0.0);
   // The lab says nothing: the defaults.
   o = RunOptions{};
   o.world_file = std::string(COOPMAP_SOURCE_DIR) + "/worlds/lab.yaml";
@@ -76,6 +91,41 @@ TEST(ExploreScenarioTest, TheBuildingsMissionSettingsApplyUnlessTheCommandLineSa
   EXPECT_EQ(r.mission_settings->floor_edge_depth, 0.0);
   EXPECT_FALSE(r.mission_settings->shaped_closures);
   EXPECT_FALSE(r.mission_settings->retry_frontiers);
+  EXPECT_FALSE(r.mission_settings->bump_away);
+  EXPECT_EQ(r.mission_settings->visited_radius, 0.0);
+  EXPECT_TRUE(r.mission_settings->calibrate_distance_scale);
+  EXPECT_EQ(r.mission_settings->passage_width, 0.0);
+  EXPECT_EQ(r.mission_settings->sortie_budget_m, 25.0);
+  EXPECT_EQ(r.mission_settings->planning_margin, 0.05);
+  o.planning_margin = 0.3;
+  r = runWorld(o);
+  EXPECT_EQ(r.mission_settings->planning_margin, 0.3);
+}
+
+// A world's sortie budget is the sortie budget (it used to be read and then ignored).
+TEST(ExploreScenarioTest, TheWorldsSortieBudgetIsUsed) {
+  RunOptions o;
+  o.world_file =
+      test_support::writeTestWorld("sortie_budget", R"(mission: {mode: explore, sortie_budget_m: 12}
+floor: {min: [-1, -3], max: [4, 3], texture: carpet}
+walls:
+  - {from: [3.8, -3], to: [3.8, 3], thickness: 0.1, height: 2.5, texture: poster}
+home_base:
+  corners:
+    - {position: [0, 2.5], heading_deg: 0}
+    - {position: [1, 2.5], heading_deg: 0}
+  texture: poster
+)");
+  o.explore = true;
+  o.duration = 1.0;
+  RunResult r = runWorld(o);
+  ASSERT_TRUE(r.mission_settings.has_value());
+  EXPECT_EQ(r.mission_settings->sortie_budget_m, 12.0);
+  o.sortie_budget_m = 30.0;
+  r = runWorld(o);
+  EXPECT_EQ(r.mission_settings->sortie_budget_m, 30.0);
+  o.sortie_budget_m = -1.0;
+  EXPECT_THROW(runWorld(o), std::invalid_argument);
 }
 
 }  // namespace

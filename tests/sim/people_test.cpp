@@ -4,6 +4,7 @@
 // they actually stand; runs repeat bit for bit.
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
@@ -161,13 +162,20 @@ TEST(PersonYieldTest, PersonWhoNeverYieldsPushesThrough) {
   EXPECT_GE(f.sim.status(0).contact_events, c.people);
 }
 
-TEST(PersonYieldTest, WallContactsAreCountedApartFromPeople) {
+// No people; one wall along y = 1 from x = -2 to 2.
+World wallAcrossAtYOne() {
   World w = openWorld({});
   WallSpec wall;
   wall.from = {-2.0, 1.0};
   wall.to = {2.0, 1.0};
   wall.texture = "carpet";
   w.walls.push_back(wall);
+  return w;
+}
+
+TEST(PersonYieldTest, WallContactsAreCountedApartFromPeople) {
+  const World w = wallAcrossAtYOne();
+  const WallSpec& wall = w.walls[0];
   Simulator sim(w, 5);
   RobotModel m = loadRobotModel(std::string(COOPMAP_SOURCE_DIR) + "/robots/b14/b14.yaml");
   RobotSpec spec;
@@ -190,6 +198,39 @@ TEST(PersonYieldTest, WallContactsAreCountedApartFromPeople) {
   EXPECT_NEAR(log[0].point.x(), 0.0, 0.1);
   EXPECT_GT(log[0].time, 2.0);
   EXPECT_LT(log[0].time, 6.0);
+}
+
+// The bump panels say where the base is touched: a wall met head-on is ahead (bearing 0), one
+// backed into is behind (pi), one the robot turns into on its left is on its left front.
+TEST(PersonYieldTest, TheBumpPanelSaysWhereTheBaseIsTouched) {
+  const World w = wallAcrossAtYOne();
+  const RobotModel m = loadRobotModel(std::string(COOPMAP_SOURCE_DIR) + "/robots/b14/b14.yaml");
+  const struct {
+    Pose2 start;
+    MotionCommand cmd;
+    double lo, hi;  // rad, robot frame: where the touch must be
+  } cases[] = {{{0.0, 0.0, M_PI / 2}, {0.3, 0.0}, -0.2, 0.2},
+               {{0.0, 0.0, -M_PI / 2}, {-0.3, 0.0}, M_PI - 0.2, M_PI + 0.2},
+               {{0.0, 0.6, 0.0}, {0.2, 0.6}, 0.2, M_PI / 2 + 0.2}};
+  for (const auto& c : cases) {
+    Simulator sim(w, 5);
+    RobotSpec spec;
+    spec.name = "r";
+    spec.start = c.start;
+    sim.addRobot(spec, {m.description, m.drive, m.odometry, {}});
+    EXPECT_FALSE(sim.status(0).bump_bearing) << "touching nothing at the start";
+    sim.command(0, c.cmd);
+    std::optional<double> bearing;
+    for (int i = 0; i < 120 && !bearing; ++i) {
+      sim.advance(0.05);
+      bearing = sim.status(0).bump_bearing;
+    }
+    ASSERT_TRUE(bearing) << "never touched the wall, command " << c.cmd.linear;
+    EXPECT_TRUE(sim.status(0).bumped);
+    const double b = *bearing < c.lo ? *bearing + 2.0 * M_PI : *bearing;  // into [lo, lo + 2pi)
+    EXPECT_GE(b, c.lo) << "command " << c.cmd.linear << ", " << c.cmd.angular;
+    EXPECT_LE(b, c.hi) << "command " << c.cmd.linear << ", " << c.cmd.angular;
+  }
 }
 
 // Two walkers on a loop cross a robot that drives back and forth across their path; the

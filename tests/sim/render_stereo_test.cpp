@@ -155,16 +155,22 @@ TEST(StereoOnRenderedFramesTest, TexturelessWallIsInvalidNotGuessed) {
   EXPECT_EQ(valid, 0);
 }
 
-TEST(RadialMapOnRenderedFramesTest, RangesMatchTheTrueWall) {
-  const double wall_x = 3.0;
+// The radial map of one rendered frame of a robot facing a textured wall at x = wall_x;
+// `face` gets the distance from the reference camera to the wall's near face.
+RadialMap radialOfWall(double wall_x, double* face) {
   Scene s(sim::parseWorld(wallWorld(wall_x, kNoise), "plane.yaml"));
   cv::Mat disparity;
   const TrinocularFrame f = s.sim.capture(0);
   const RobotDescription& robot = s.model.description;
   TrinocularMatcher matcher(robot.rig, StereoConfig{});
   matcher.compute(f.reference, f.horizontal, f.vertical, disparity);
-  const RadialMap radial = buildRadialMap(disparity, robot, RadialMapConfig{}, f.stamp, f.odometry);
-  const double face = wall_x - 0.05 - robot.rig.mount_position.x();
+  *face = wall_x - 0.05 - robot.rig.mount_position.x();
+  return buildRadialMap(disparity, robot, RadialMapConfig{}, f.stamp, f.odometry);
+}
+
+TEST(RadialMapOnRenderedFramesTest, RangesMatchTheTrueWall) {
+  double face = 0.0;
+  const RadialMap radial = radialOfWall(3.0, &face);
   int hits = 0;
   for (const RadialReading& r : radial.readings) {
     if (r.kind != RadialKind::kHit) continue;
@@ -173,6 +179,27 @@ TEST(RadialMapOnRenderedFramesTest, RangesMatchTheTrueWall) {
     EXPECT_NEAR(r.range, truth, std::max(0.05, 2.0 * r.sigma)) << "bearing " << r.bearing;
   }
   EXPECT_GT(hits, 120);  // most of the 160 columns see the wall
+}
+
+// Ranges carry no systematic error at any depth: a few per cent short or long would read
+// as odometry that over- or under-counts when scans of one wall seen from along a path are
+// aligned (loop closures fit the odometry's distance scale from them). Sub-pixel disparity
+// leaves -1.5 % to +1 % at some depths (measured: 1.5 m -0.2 %, 2 m +0.95 %, 3 m -1.54 %,
+// 4 m +0.84 %); 5 m is beyond the radial map's range.
+TEST(RadialMapOnRenderedFramesTest, RangesAreUnbiasedAtEveryDepth) {
+  for (const double wall_x : {1.5, 2.0, 2.5, 3.0, 4.0}) {
+    double face = 0.0;
+    const RadialMap radial = radialOfWall(wall_x, &face);
+    double sum = 0.0;
+    int hits = 0;
+    for (const RadialReading& r : radial.readings)
+      if (r.kind == RadialKind::kHit) {
+        sum += r.range / (face / std::cos(r.bearing)) - 1.0;
+        ++hits;
+      }
+    ASSERT_GT(hits, 50) << "wall at " << wall_x;
+    EXPECT_NEAR(sum / hits, 0.0, 0.02) << "wall at " << wall_x << " m";
+  }
 }
 
 // A corridor with a textureless wall on the right: no column matches the wall itself, but

@@ -87,7 +87,9 @@ TEST(WorldLoaderTest, MissionSettingsOfABuildingAreReadAndChecked) {
   const World w = parseWorld(
       "mission: {mode: explore, first_sortie_budget_m: 10, safety_distance: 0.45, "
       "slow_distance: 1, fringe_clearance: 0.3, goal_clearance: 0.4, retry_frontiers: true, "
-      "floor_edge_depth: 1.5, shaped_closures: true}\n" +
+      "floor_edge_depth: 1.5, shaped_closures: true, bump_away: true, visited_radius: 0.09, "
+      "calibrate_distance_scale: false, passage_width: 1.2, sortie_budget_m: 30, "
+      "planning_margin: 0.2}\n" +
           minimal(),
       "w.yaml");
   EXPECT_EQ(w.mission, "explore");
@@ -99,6 +101,12 @@ TEST(WorldLoaderTest, MissionSettingsOfABuildingAreReadAndChecked) {
   EXPECT_EQ(w.exploration.retry_frontiers, true);
   EXPECT_EQ(w.exploration.floor_edge_depth, 1.5);
   EXPECT_EQ(w.exploration.shaped_closures, true);
+  EXPECT_EQ(w.exploration.bump_away, true);
+  EXPECT_EQ(w.exploration.visited_radius, 0.09);
+  EXPECT_EQ(w.exploration.calibrate_distance_scale, false);
+  EXPECT_EQ(w.exploration.passage_width, 1.2);
+  EXPECT_EQ(w.exploration.sortie_budget_m, 30.0);
+  EXPECT_EQ(w.exploration.planning_margin, 0.2);
   EXPECT_FALSE(parseWorld(minimal(), "w.yaml").exploration.safety_distance.has_value());
   const World building = loadWorld(kSrc + "/worlds/lab_corridor.yaml");
   EXPECT_TRUE(building.exploration.retry_frontiers.value_or(false));
@@ -106,6 +114,13 @@ TEST(WorldLoaderTest, MissionSettingsOfABuildingAreReadAndChecked) {
   EXPECT_NE(e.find("w.yaml:1:43: mission.safety_distance: expected metres in [0.05, 5], got '-1'"),
             std::string::npos)
       << e;
+  e = errorOf("mission: {mode: explore, visited_radius: 2}\n" + minimal());
+  EXPECT_NE(e.find("mission.visited_radius: expected metres in [0, 1] (0: the robot's radius), "
+                   "got '2'"),
+            std::string::npos)
+      << e;
+  e = errorOf("mission: {mode: explore, bump_away: sometimes}\n" + minimal());
+  EXPECT_NE(e.find("mission.bump_away"), std::string::npos) << e;
   e = errorOf("mission: {mode: explore, budget: 3}\n" + minimal());
   EXPECT_NE(e.find("budget"), std::string::npos) << e;
   e = errorOf("mission: {safety_distance: 0.4}\n" + minimal());

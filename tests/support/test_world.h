@@ -6,17 +6,22 @@
 #include <fstream>
 #include <string>
 
+#include <unistd.h>
+
 namespace coopmap::test_support {
 
 // Writes a world named `name` with the common textures (carpet, poster, wood), the given
 // YAML body (floor, walls, doors, home_base, people ...) and one robot "r" at the origin
 // with the given route (YAML flow list, may be empty), then `more_robots` (YAML list items
-// of the robots key, may be empty). Returns the file's path.
+// of the robots key, may be empty). Returns the file's path, which holds the process id:
+// ctest runs each test in its own process, two at a time, and two tests of one file that
+// write different worlds under one name must not read each other's.
 inline std::string writeTestWorld(const std::string& name, const std::string& body,
                                   const std::string& route = "",
                                   const std::string& more_robots = "") {
-  const std::string path =
-      (std::filesystem::temp_directory_path() / ("coopmap_test_" + name + ".yaml")).string();
+  const std::string path = (std::filesystem::temp_directory_path() /
+                            ("coopmap_test_" + name + "_" + std::to_string(::getpid()) + ".yaml"))
+                               .string();
   std::ofstream(path) << "name: " << name << R"(
 textures:
   carpet: {type: noise, tile: 2.0, feature: 0.03, mean: 105, contrast: 30}

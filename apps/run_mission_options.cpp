@@ -1,0 +1,105 @@
+#include "apps/run_mission_options.h"
+
+#include <optional>
+#include <string>
+
+namespace coopmap {
+
+namespace {
+
+// A number option that sets `target` when given.
+CLI::Option* setting(CLI::App& cmd, const std::string& name, std::optional<double>& target,
+                     const std::string& help) {
+  return cmd.add_option_function<double>(
+      name, [&target](const double& v) { target = v; }, help);
+}
+
+// Two flags, one turning `target` on, the other off; not both.
+void onOff(CLI::App& cmd, const std::string& on, const std::string& on_help, const std::string& off,
+           const std::string& off_help, std::optional<bool>& target) {
+  CLI::Option* yes = cmd.add_flag_callback(
+      on, [&target] { target = true; }, on_help);
+  cmd.add_flag_callback(
+         off, [&target] { target = false; }, off_help)
+      ->excludes(yes);
+}
+
+}  // namespace
+
+void addMissionSettingOptions(CLI::App& cmd, RunOptions& run) {
+  setting(cmd, "--sortie-budget", run.sortie_budget_m,
+          "With --explore: metres of a sortie before the robot goes home to be localized, "
+          "share its corrected traverse and import the shared map [default: the world's "
+          "mission settings, else 25]")
+      ->check(CLI::PositiveNumber);
+  setting(cmd, "--first-sortie-budget", run.first_sortie_budget_m,
+          "With --explore and sorties: metres of the first sortie (0: --sortie-budget); a "
+          "short first one calibrates the odometry near home before long ones [default: the "
+          "world's mission settings, else 0]")
+      ->check(CLI::NonNegativeNumber);
+  setting(cmd, "--safety-distance", run.safety_distance,
+          "With --explore: m from the cameras; an obstacle ahead nearer than this stops the "
+          "robot [default: the world's, else 0.30]")
+      ->check(CLI::PositiveNumber);
+  setting(cmd, "--slow-distance", run.slow_distance,
+          "With --explore: m; an obstacle ahead nearer than this slows the robot (0: never) "
+          "[default: the world's, else 0]")
+      ->check(CLI::NonNegativeNumber);
+  setting(cmd, "--fringe-clearance", run.fringe_clearance,
+          "With --explore: m; uncertain cells this far from obstacles, joined to unseen ones, "
+          "make frontiers when no other frontier has a goal (0: off) [default: the world's, "
+          "else 0]")
+      ->check(CLI::NonNegativeNumber);
+  setting(cmd, "--floor-edge-depth", run.floor_edge_depth,
+          "m; a camera column that matches nothing but sees the floor end nearer than this "
+          "depth has met a textureless wall there (0: off) [default: the world's, else 0]")
+      ->check(CLI::Range(0.0, 5.0));
+  setting(cmd, "--goal-clearance", run.goal_clearance,
+          "With --explore: m; frontier goals this far from anything blocked are preferred (0: "
+          "the nearest free cell) [default: the world's, else 0]")
+      ->check(CLI::NonNegativeNumber);
+  onOff(cmd, "--retry-frontiers",
+        "With --explore and sorties: frontiers whose goals failed send the robot home to share "
+        "and try again next sortie, rather than end exploration; reached goals are not tried "
+        "again [default: the world's, else off]",
+        "--no-retry-frontiers",
+        "With --explore: end exploration when no frontier goal is left this sortie",
+        run.retry_frontiers);
+  onOff(cmd, "--bump-away",
+        "With --explore: after a bump, back off away from where the base was touched and map "
+        "the obstacle at that bearing (the simulator's bump panels say where) [default: the "
+        "world's, else off]",
+        "--bump-back",
+        "With --explore: after a bump, back off against the command and map the obstacle "
+        "ahead",
+        run.bump_away);
+  setting(cmd, "--passage-width", run.passage_width,
+          "With --explore and several robots: m; where the way ahead passes between obstacles "
+          "nearer together than this (a door), a robot waits while a teammate nearer to it "
+          "goes through (0: off) [default: the world's, else 0]")
+      ->check(CLI::Range(0.0, 5.0));
+  setting(cmd, "--visited-radius", run.visited_radius,
+          "With --explore: m either side of the path driven kept free in planning (0: the "
+          "robot's radius) [default: the world's, else 0]")
+      ->check(CLI::Range(0.0, 1.0));
+  setting(cmd, "--margin", run.planning_margin,
+          "With --explore: metres kept clear around the robot's body in planning, room for "
+          "the estimate's drift [default: the world's, else 0.05]")
+      ->check(CLI::Range(0.0, 1.0));
+  onOff(cmd, "--scale-calibration",
+        "With --explore: the online odometry calibration includes the distance scale the "
+        "sorties' loop closures find [default: the world's, else on]",
+        "--no-scale-calibration",
+        "With --explore: calibrate heading drift and turn scale only (a home-base fix does "
+        "not observe the distance scale)",
+        run.calibrate_distance_scale);
+  onOff(cmd, "--shaped-closures",
+        "With --explore and closures: a closure pins its position only in the directions its "
+        "alignment pins down (along a straight corridor's walls it is left loose) [default: "
+        "the world's, else off]",
+        "--round-closures",
+        "With --explore and closures: each closure pins its position in every direction alike",
+        run.shaped_closures);
+}
+
+}  // namespace coopmap
