@@ -95,13 +95,14 @@ int main(int argc, char** argv) {
                    "which returns are the teammate and are not mapped (0: mapped like the world)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 2.0));
-  std::string closures = "self";
-  cmd_run
-      ->add_option("--closures", closures,
-                   "With --explore: loop closures of each sortie's correction: stretches "
-                   "aligned to the shared map, to the sortie's other half, both, or none")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"both", "shared", "self", "none"}));
+  std::string closures;
+  auto* closures_option =
+      cmd_run
+          ->add_option("--closures", closures,
+                       "With --explore: loop closures of each sortie's correction: stretches "
+                       "aligned to the shared map, to the sortie's other half, both, or none "
+                       "[default: the world's, else self]")
+          ->check(CLI::IsMember({"both", "shared", "self", "none"}));
   bool no_coordination = false;
   cmd_run->add_flag("--no-coordination", no_coordination,
                     "With --explore and several robots: each explores as if alone (default: "
@@ -472,8 +473,7 @@ int main(int argc, char** argv) {
       run.track_shared_map = tracking;
       run.calibrate_odometry = !no_calibration;
       run.coordinate = !no_coordination;
-      run.cooperation.closures = closures == "both" || closures == "shared";
-      run.cooperation.self_closures = closures == "both" || closures == "self";
+      if (closures_option->count() > 0) run.closures = closures;
       if (robots > 0) run.robots = robots;
       if (!odometry.empty()) run.odometry = odometry;
       if (sensing_rate > 0.0) run.sensing_rate = sensing_rate;

@@ -86,6 +86,11 @@ void addMissionSettingOptions(CLI::App& cmd, RunOptions& run) {
           "With --explore: metres kept clear around the robot's body in planning, room for "
           "the estimate's drift [default: the world's, else 0.05]")
       ->check(CLI::Range(0.0, 1.0));
+  setting(cmd, "--preferred-margin", run.preferred_margin,
+          "With --explore: metres beyond the body the paths keep from walls where the map "
+          "leaves room (a door only as wide as the robot needs is still passed, through its "
+          "middle; 0: off) [default: the world's, else 0]")
+      ->check(CLI::Range(0.0, 2.0));
   onOff(cmd, "--scale-calibration",
         "With --explore: the online odometry calibration includes the distance scale the "
         "sorties' loop closures find [default: the world's, else on]",

@@ -119,6 +119,7 @@ void writeOutputs(const RunOptions& opt, const sim::World& world, const RunResul
     j.value("visited_radius", m->visited_radius);
     j.value("calibrate_distance_scale", m->calibrate_distance_scale);
     j.value("passage_width", m->passage_width).value("planning_margin", m->planning_margin);
+    j.value("preferred_margin", m->preferred_margin).value("closures", m->closures);
     j.endObject();
   }
   j.value("sim_time_s", result.sim_time_s).value("wall_time_s", result.wall_time_s);
@@ -182,6 +183,11 @@ void drawProgress(double t, double total) {
   std::fflush(stderr);
 }
 
+// The name of a choice of loop closures (RunOptions::closures).
+std::string closureKinds(bool to_shared_map, bool within_sortie) {
+  return to_shared_map ? (within_sortie ? "both" : "shared") : (within_sortie ? "self" : "none");
+}
+
 }  // namespace
 
 RunResult runWorld(const RunOptions& opt) {
@@ -202,6 +208,10 @@ RunResult runWorld(const RunOptions& opt) {
       opt.explore && opt.max_sorties > 1 && world.home_base.corners.size() == 2;
   if (opt.explore && opt.sortie_budget_m && !(*opt.sortie_budget_m > 0.0))
     throw std::invalid_argument("--sortie-budget: expected a positive number of metres");
+  if (opt.closures && *opt.closures != "none" && *opt.closures != "self" &&
+      *opt.closures != "shared" && *opt.closures != "both")
+    throw std::invalid_argument("closures: expected one of none, self, shared, both, got '" +
+                                *opt.closures + "'");
   if (opt.explore && opt.max_sorties < 1)
     throw std::invalid_argument("--sorties: expected at least 1");
   if (!(opt.timeline_period_s > 0.0))
@@ -273,7 +283,12 @@ RunResult runWorld(const RunOptions& opt) {
       mission.bump_away = pick(opt.bump_away, we.bump_away, mission.bump_away);
       mission.visited_radius = pick(opt.visited_radius, we.visited_radius, mission.visited_radius);
       mission.passage_width = pick(opt.passage_width, we.passage_width, mission.passage_width);
+      mission.planner.preferred_margin =
+          pick(opt.preferred_margin, we.preferred_margin, mission.planner.preferred_margin);
       mission.validate();
+      const std::string closures =
+          pick(opt.closures, we.closures,
+               closureKinds(opt.cooperation.closures, opt.cooperation.self_closures));
       settings = RunResult::MissionSettings{
           mission.budget_m,
           mission.first_budget_m,
@@ -288,12 +303,16 @@ RunResult runWorld(const RunOptions& opt) {
           mission.visited_radius,
           pick(opt.calibrate_distance_scale, we.calibrate_distance_scale, true),
           mission.passage_width,
-          mission.planning.margin};
+          mission.planning.margin,
+          mission.planner.preferred_margin,
+          closures};
       mission.max_sorties = cooperative ? opt.max_sorties : 1;
       r.mission = std::make_unique<MissionAgent>(spec.start, mission);
       if (cooperative) {
         CooperationConfig cooperation = opt.cooperation;
         cooperation.closure_shape = settings->shaped_closures;
+        cooperation.closures = closures == "both" || closures == "shared";
+        cooperation.self_closures = closures == "both" || closures == "self";
         r.coop = std::make_unique<HomeBaseCooperation>(
             spec.name, nominalHomeBase(world), world.home_base.arm_length, &*live, cooperation);
         r.calibrate = opt.calibrate_odometry;

@@ -81,6 +81,12 @@ struct RunOptions {
   // PlanningMapConfig::margin): room for the estimate's drift between home-base fixes.
   // Unset: the world's mission setting, else 0.05.
   std::optional<double> planning_margin;
+  // m beyond the body the paths keep from walls where the map leaves room (on top of the
+  // radius; PlannerConfig::preferred_margin). Unset: the world's mission setting, else 0 (off).
+  std::optional<double> preferred_margin;
+  // The sorties' loop closures: "none", "self", "shared" or "both". Unset: the world's mission
+  // setting, else `cooperation` as it is (closures within the sortie only, by default).
+  std::optional<std::string> closures;
   // m: returns this close to where a teammate reports itself are the teammate, and are not
   // logged or posted (Mapper::setTeammates); 0: teammates are logged like the world. 0.8 m:
   // a report is off by the teammate's drift, and stereo fattens its body; with 0.5 m, home-
@@ -183,6 +189,8 @@ struct RunResult {
     bool calibrate_distance_scale = true;
     double passage_width = 0.0;
     double planning_margin = 0.0;
+    double preferred_margin = 0.0;
+    std::string closures;  // none, self, shared or both
   };
   std::optional<MissionSettings> mission_settings;  // with --explore
   std::vector<TimelineSample> timeline;

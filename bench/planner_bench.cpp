@@ -11,6 +11,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include "core/planning/keep_clear.h"
 #include "core/planning/path_planner.h"
 #include "core/planning/planning_map.h"
 #include "sim/world/ground_truth.h"
@@ -54,6 +55,8 @@ double median(std::vector<double> v) {
 
 // Arg 0: the query (0: lab start -> south end of the return corridor, through the back
 // door; 1: lab start -> north corridor, through the lab door). Arg 1: simplify or not.
+// Arg 2: keep clear of walls (PlannerConfig::preferred_margin 0.3 m) or not; shortfall_m2
+// is the path's shortfall from that clearance (keepClear's measure), with or without.
 // A new seed every iteration; counters report the median over the iterations.
 void BM_PlanRRTConnect400(benchmark::State& state) {
   const PlanningMap map(labCorridor400(), PlanningMapConfig::forRobot(RobotDescription{}));
@@ -62,7 +65,10 @@ void BM_PlanRRTConnect400(benchmark::State& state) {
       state.range(0) == 0 ? Eigen::Vector2d(14.0, -6.0) : Eigen::Vector2d(18.0, 9.1);
   PlannerConfig config;
   config.simplify = state.range(1) != 0;
-  std::vector<double> ms, length, raw_length, waypoints;
+  config.preferred_margin = state.range(2) != 0 ? 0.3 : 0.0;
+  KeepClearConfig clear;
+  clear.clearance = map.config().robot_radius + 0.3;
+  std::vector<double> ms, length, raw_length, waypoints, shortfall;
   int failed = 0;
   uint32_t seed = 1;
   for (auto _ : state) {
@@ -78,18 +84,20 @@ void BM_PlanRRTConnect400(benchmark::State& state) {
     length.push_back(r.path.length());
     raw_length.push_back(r.raw_length);
     waypoints.push_back(static_cast<double>(r.path.waypoints.size()));
+    shortfall.push_back(shortfallOf(r.path.waypoints, map, clear).integral);
   }
   state.counters["median_ms"] = median(ms);
   state.counters["length_m"] = median(length);
   state.counters["raw_length_m"] = median(raw_length);
   state.counters["waypoints"] = median(waypoints);
+  state.counters["shortfall_m2"] = median(shortfall);
   state.counters["failed"] = failed;
 }
 
 BENCHMARK(BM_PlanningMapBuild400)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PlanRRTConnect400)
-    ->ArgsProduct({{0, 1}, {0, 1}})
-    ->ArgNames({"query", "simplify"})
+    ->ArgsProduct({{0, 1}, {0, 1}, {0, 1}})
+    ->ArgNames({"query", "simplify", "keep_clear"})
     ->Unit(benchmark::kMillisecond);
 
 }  // namespace

@@ -28,6 +28,8 @@
 #include <ompl/util/Console.h>
 #include <ompl/util/RandomNumbers.h>
 
+#include "core/planning/keep_clear.h"
+
 namespace coopmap {
 
 namespace ob = ompl::base;
@@ -241,6 +243,8 @@ void PlannerConfig::validate() const {
   if (!(time_budget > 0.0 && time_budget <= 3600.0))
     bad("time_budget", "a time in (0, 3600] s", time_budget);
   if (!(range >= 0.0 && std::isfinite(range))) bad("range", "a distance >= 0 m", range);
+  if (!(preferred_margin >= 0.0 && preferred_margin <= 5.0))
+    bad("preferred_margin", "a margin in [0, 5] m", preferred_margin);
   if (simplify_rounds < 0 || simplify_rounds > 100)
     bad("simplify_rounds", "an integer in [0, 100]", simplify_rounds);
   if (static_cast<int>(planner) > static_cast<int>(PlannerType::kRRTstar))
@@ -301,11 +305,13 @@ PlanResult PathPlanner::plan(const PlanningMap& map, const Pose2& start,
   if (map.segmentFree(s, goal)) {  // in straight sight (or the same point): one segment
     PlanResult r;
     r.status = PlanStatus::kSolved;
-    r.path.waypoints = {s, goal};
+    r.path.waypoints = keepClearOf(map, {s, goal});
     r.path.commands = turnsAndStraights(r.path.waypoints, start.theta, goal_heading);
     r.raw_waypoints = 2;
-    r.raw_length = r.path.length();
+    r.raw_length = (goal - s).norm();
     r.reason = "the goal is in straight sight";
+    if (r.path.waypoints.size() > 2)
+      r.reason += "; " + std::to_string(r.path.waypoints.size() - 2) + " waypoints keep clear";
     return r;
   }
 
@@ -371,6 +377,7 @@ PlanResult PathPlanner::plan(const PlanningMap& map, const Pose2& start,
     }
     w = pullString(waypointsOf(path), map);
   }
+  w = keepClearOf(map, std::move(w));
   // The motion validator checked every segment; a blocked one here is a bug, never a result.
   if (const auto bad = firstBlockedSegment(w, map)) {
     std::fprintf(stderr,
@@ -385,6 +392,14 @@ PlanResult PathPlanner::plan(const PlanningMap& map, const Pose2& start,
                 r.raw_waypoints, r.raw_length);
   r.reason = buf;
   return r;
+}
+
+std::vector<Eigen::Vector2d> PathPlanner::keepClearOf(const PlanningMap& map,
+                                                      std::vector<Eigen::Vector2d> w) const {
+  if (!(config_.preferred_margin > 0.0)) return w;
+  KeepClearConfig c;
+  c.clearance = map.config().robot_radius + config_.preferred_margin;
+  return keepClear(std::move(w), map, c);
 }
 
 PathPlanner::Replan PathPlanner::replanIfBlocked(const PlanningMap& map, const PlannedPath& path,

@@ -40,6 +40,11 @@ struct PlannerConfig {
   double range = 0.0;
   bool simplify = true;     // shortcutting and vertex reduction (OMPL's PathSimplifier)
   int simplify_rounds = 4;  // rounds of reduceVertices + shortcutPath
+  // m beyond the robot's radius the path keeps from blocked cells where the map leaves room
+  // (keepClear, after simplification; 0: off). The map's margin is what the robot must keep;
+  // this is what it keeps where it can: in the open, away from walls; in a door only as
+  // wide as the robot needs, through its middle.
+  double preferred_margin = 0.0;
 
   void validate() const;  // throws std::invalid_argument naming the field and the value
 };
@@ -130,6 +135,10 @@ class PathPlanner {
   const PlannerConfig& config() const { return config_; }
 
  private:
+  // keepClear with the preferred margin, when there is one.
+  std::vector<Eigen::Vector2d> keepClearOf(const PlanningMap& map,
+                                           std::vector<Eigen::Vector2d> w) const;
+
   PlannerConfig config_;
 };
 

@@ -194,7 +194,11 @@ struct World {
     std::optional<double> visited_radius;          // m: MissionConfig::visited_radius
     std::optional<bool> calibrate_distance_scale;  // OdometryCalibration's distance scale
     std::optional<double> passage_width;           // m: MissionConfig::passage_width
-    std::optional<double> planning_margin;  // m: PlanningMapConfig::margin of exploring robots
+    std::optional<double> planning_margin;   // m: PlanningMapConfig::margin of exploring robots
+    std::optional<double> preferred_margin;  // m: PlannerConfig::preferred_margin of the same
+    // The sorties' loop closures: "none", "self", "shared" or "both" (CooperationConfig::
+    // closures and self_closures; `coopmap run --closures`).
+    std::optional<std::string> closures;
   } exploration;
 
   // The floor's rectangles: `floor_areas`, or the bounding rectangle if that is empty.

@@ -218,7 +218,8 @@ World parseWorld(const std::string& text, const std::string& file) {
       mission->allowOnly({"mode", "sortie_budget_m", "first_sortie_budget_m", "safety_distance",
                           "slow_distance", "fringe_clearance", "goal_clearance", "retry_frontiers",
                           "floor_edge_depth", "shaped_closures", "bump_away", "visited_radius",
-                          "calibrate_distance_scale", "passage_width", "planning_margin"});
+                          "calibrate_distance_scale", "passage_width", "planning_margin",
+                          "preferred_margin", "closures"});
       World::Exploration& e = w.exploration;
       auto metres = [&](const char* key, double lo, double hi, const char* what,
                         std::optional<double>& out) {
@@ -234,6 +235,7 @@ World parseWorld(const std::string& text, const std::string& file) {
       metres("floor_edge_depth", 0.0, 5.0, "metres in [0, 5] (0: off)", e.floor_edge_depth);
       metres("passage_width", 0.0, 5.0, "metres in [0, 5] (0: off)", e.passage_width);
       metres("planning_margin", 0.0, 1.0, "metres in [0, 1]", e.planning_margin);
+      metres("preferred_margin", 0.0, 2.0, "metres in [0, 2] (0: off)", e.preferred_margin);
       metres("visited_radius", 0.0, 1.0, "metres in [0, 1] (0: the robot's radius)",
              e.visited_radius);
       if (mission->has("retry_frontiers"))
@@ -241,6 +243,13 @@ World parseWorld(const std::string& text, const std::string& file) {
       if (mission->has("shaped_closures"))
         e.shaped_closures = (*mission)["shaped_closures"].asBool();
       if (mission->has("bump_away")) e.bump_away = (*mission)["bump_away"].asBool();
+      if (mission->has("closures")) {
+        const YamlField f = (*mission)["closures"];
+        e.closures = f.asString();
+        if (*e.closures != "none" && *e.closures != "self" && *e.closures != "shared" &&
+            *e.closures != "both")
+          f.fail("one of none, self, shared, both");
+      }
       if (mission->has("calibrate_distance_scale"))
         e.calibrate_distance_scale = (*mission)["calibrate_distance_scale"].asBool();
     }

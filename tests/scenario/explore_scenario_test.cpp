@@ -61,16 +61,20 @@ TEST(ExploreScenarioTest, TheBuildingsMissionSettingsApplyUnlessTheCommandLineSa
   EXPECT_EQ(r.mission_settings->visited_radius, 0.09);
   EXPECT_FALSE(r.mission_settings->calibrate_distance_scale);
   EXPECT_EQ(r.mission_settings->passage_width, 1.2);
-  EXPECT_EQ(r.mission_settings->sortie_budget_m, 25.0);
+  EXPECT_EQ(r.mission_settings->sortie_budget_m, 40.0);
   EXPECT_EQ(r.mission_settings->planning_margin, 0.12);
+  EXPECT_EQ(r.mission_settings->preferred_margin, 0.0);
+  EXPECT_EQ(r.mission_settings->closures, "both");
   o.safety_distance = 0.6;
   o.passage_width = 0.0;
   o.calibrate_distance_scale = true;
   o.bump_away = false;
   o.retry_frontiers = false;
   o.floor_edge_depth = 0.0;
+  o.closures = "self";
   r = runWorld(o);
   EXPECT_EQ(r.mission_settings->floor_edge_depth, 0.0);
+  EXPECT_EQ(r.mission_settings->closures, "self");
   EXPECT_TRUE(r.mission_settings->shaped_closures);
   EXPECT_EQ(r.mission_settings->safety_distance, 0.6);
   EXPECT_FALSE(r.mission_settings->retry_frontiers);
@@ -97,9 +101,17 @@ TEST(ExploreScenarioTest, TheBuildingsMissionSettingsApplyUnlessTheCommandLineSa
   EXPECT_EQ(r.mission_settings->passage_width, 0.0);
   EXPECT_EQ(r.mission_settings->sortie_budget_m, 25.0);
   EXPECT_EQ(r.mission_settings->planning_margin, 0.05);
+  EXPECT_EQ(r.mission_settings->preferred_margin, 0.0);
+  EXPECT_EQ(r.mission_settings->closures, "self");
   o.planning_margin = 0.3;
+  o.preferred_margin = 0.25;
+  o.closures = "none";
   r = runWorld(o);
   EXPECT_EQ(r.mission_settings->planning_margin, 0.3);
+  EXPECT_EQ(r.mission_settings->preferred_margin, 0.25);
+  EXPECT_EQ(r.mission_settings->closures, "none");
+  o.closures = "some";
+  EXPECT_THROW(runWorld(o), std::invalid_argument);
 }
 
 // A world's sortie budget is the sortie budget (it used to be read and then ignored).
