@@ -64,7 +64,7 @@ TEST(ExploreScenarioTest, TheBuildingsMissionSettingsApplyUnlessTheCommandLineSa
   EXPECT_EQ(r.mission_settings->sortie_budget_m, 40.0);
   EXPECT_EQ(r.mission_settings->planning_margin, 0.12);
   EXPECT_EQ(r.mission_settings->preferred_margin, 0.0);
-  EXPECT_EQ(r.mission_settings->closures, "both");
+  EXPECT_EQ(r.mission_settings->closures, "shared");
   o.safety_distance = 0.6;
   o.passage_width = 0.0;
   o.calibrate_distance_scale = true;
