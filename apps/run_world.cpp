@@ -183,11 +183,6 @@ void drawProgress(double t, double total) {
   std::fflush(stderr);
 }
 
-// The name of a choice of loop closures (RunOptions::closures).
-std::string closureKinds(bool to_shared_map, bool within_sortie) {
-  return to_shared_map ? (within_sortie ? "both" : "shared") : (within_sortie ? "self" : "none");
-}
-
 }  // namespace
 
 RunResult runWorld(const RunOptions& opt) {
@@ -208,8 +203,7 @@ RunResult runWorld(const RunOptions& opt) {
       opt.explore && opt.max_sorties > 1 && world.home_base.corners.size() == 2;
   if (opt.explore && opt.sortie_budget_m && !(*opt.sortie_budget_m > 0.0))
     throw std::invalid_argument("--sortie-budget: expected a positive number of metres");
-  if (opt.closures && *opt.closures != "none" && *opt.closures != "self" &&
-      *opt.closures != "shared" && *opt.closures != "both")
+  if (opt.closures && !CooperationConfig{}.setClosureKinds(*opt.closures))
     throw std::invalid_argument("closures: expected one of none, self, shared, both, got '" +
                                 *opt.closures + "'");
   if (opt.explore && opt.max_sorties < 1)
@@ -286,9 +280,7 @@ RunResult runWorld(const RunOptions& opt) {
       mission.planner.preferred_margin =
           pick(opt.preferred_margin, we.preferred_margin, mission.planner.preferred_margin);
       mission.validate();
-      const std::string closures =
-          pick(opt.closures, we.closures,
-               closureKinds(opt.cooperation.closures, opt.cooperation.self_closures));
+      const std::string closures = pick(opt.closures, we.closures, opt.cooperation.closureKinds());
       settings = RunResult::MissionSettings{
           mission.budget_m,
           mission.first_budget_m,
@@ -311,8 +303,7 @@ RunResult runWorld(const RunOptions& opt) {
       if (cooperative) {
         CooperationConfig cooperation = opt.cooperation;
         cooperation.closure_shape = settings->shaped_closures;
-        cooperation.closures = closures == "both" || closures == "shared";
-        cooperation.self_closures = closures == "both" || closures == "self";
+        cooperation.setClosureKinds(closures);  // checked above (options) or on loading
         r.coop = std::make_unique<HomeBaseCooperation>(
             spec.name, nominalHomeBase(world), world.home_base.arm_length, &*live, cooperation);
         r.calibrate = opt.calibrate_odometry;

@@ -29,6 +29,17 @@ struct PlacedScans {
 
 }  // namespace
 
+std::string CooperationConfig::closureKinds() const {
+  return closures ? (self_closures ? "both" : "shared") : (self_closures ? "self" : "none");
+}
+
+bool CooperationConfig::setClosureKinds(const std::string& name) {
+  if (name != "none" && name != "self" && name != "shared" && name != "both") return false;
+  closures = name == "both" || name == "shared";
+  self_closures = name == "both" || name == "self";
+  return true;
+}
+
 void CooperationConfig::validate() const {
   if (!(max_fix_jump_m > 0.0))
     throw std::invalid_argument(

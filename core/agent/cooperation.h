@@ -67,6 +67,12 @@ struct CooperationConfig {
   double min_home_agreement = 0.5;
   int home_check_scans = 30;
   void validate() const;  // throws std::invalid_argument naming the field
+
+  // The loop closures by name: "none", "self" (within the sortie), "shared" (to the shared
+  // map) or "both" (`coopmap run --closures`, a world's `closures`).
+  std::string closureKinds() const;
+  // Sets closures and self_closures from such a name; false (nothing changed) for another.
+  bool setClosureKinds(const std::string& name);
 };
 
 struct SortieReport {

@@ -4,6 +4,7 @@
 #include <set>
 #include <sstream>
 
+#include "core/agent/cooperation.h"
 #include "core/agent/route_follower.h"
 #include "core/io/yaml_reader.h"
 #include "sim/world/world.h"
@@ -246,8 +247,7 @@ World parseWorld(const std::string& text, const std::string& file) {
       if (mission->has("closures")) {
         const YamlField f = (*mission)["closures"];
         e.closures = f.asString();
-        if (*e.closures != "none" && *e.closures != "self" && *e.closures != "shared" &&
-            *e.closures != "both")
+        if (!CooperationConfig{}.setClosureKinds(*e.closures))
           f.fail("one of none, self, shared, both");
       }
       if (mission->has("calibrate_distance_scale"))
