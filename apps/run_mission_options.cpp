@@ -91,6 +91,11 @@ void addMissionSettingOptions(CLI::App& cmd, RunOptions& run) {
           "leaves room (a door only as wide as the robot needs is still passed, through its "
           "middle; 0: off) [default: the world's, else 0]")
       ->check(CLI::Range(0.0, 2.0));
+  setting(cmd, "--post-gate", run.post_gate_m,
+          "With --explore: metres; a stretch of a corrected sortie that the shared map would "
+          "move farther than this is not posted (it was misplaced; 0: off) [default: the "
+          "world's, else 0]")
+      ->check(CLI::Range(0.0, 2.0));
   onOff(cmd, "--scale-calibration",
         "With --explore: the online odometry calibration includes the distance scale the "
         "sorties' loop closures find [default: the world's, else on]",

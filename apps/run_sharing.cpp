@@ -164,7 +164,11 @@ void endSortie(RobotRun& r, LocalSharedMap& live, double now, double reapproach_
                   r.calibration.bias().distance_scale);
     calibration = c;
   }
-  r.result.sortie_log.push_back(std::string(line) + " (" + rep.method + calibration + ")");
+  const std::string refused = rep.fixed && !rep.posted && !rep.post.reason.empty()
+                                  ? ", not posted: " + rep.post.reason
+                                  : "";
+  r.result.sortie_log.push_back(std::string(line) + refused + " (" + rep.method + calibration +
+                                ")");
   if (rep.fixed)
     r.mission->continueAfterFix(now);
   else

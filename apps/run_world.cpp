@@ -120,6 +120,7 @@ void writeOutputs(const RunOptions& opt, const sim::World& world, const RunResul
     j.value("calibrate_distance_scale", m->calibrate_distance_scale);
     j.value("passage_width", m->passage_width).value("planning_margin", m->planning_margin);
     j.value("preferred_margin", m->preferred_margin).value("closures", m->closures);
+    j.value("post_gate_m", m->post_gate_m);
     j.endObject();
   }
   j.value("sim_time_s", result.sim_time_s).value("wall_time_s", result.wall_time_s);
@@ -297,13 +298,15 @@ RunResult runWorld(const RunOptions& opt) {
           mission.passage_width,
           mission.planning.margin,
           mission.planner.preferred_margin,
-          closures};
+          closures,
+          pick(opt.post_gate_m, we.post_gate_m, opt.cooperation.post_gate_m)};
       mission.max_sorties = cooperative ? opt.max_sorties : 1;
       r.mission = std::make_unique<MissionAgent>(spec.start, mission);
       if (cooperative) {
         CooperationConfig cooperation = opt.cooperation;
         cooperation.closure_shape = settings->shaped_closures;
         cooperation.setClosureKinds(closures);  // checked above (options) or on loading
+        cooperation.post_gate_m = settings->post_gate_m;
         r.coop = std::make_unique<HomeBaseCooperation>(
             spec.name, nominalHomeBase(world), world.home_base.arm_length, &*live, cooperation);
         r.calibrate = opt.calibrate_odometry;

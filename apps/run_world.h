@@ -87,6 +87,9 @@ struct RunOptions {
   // The sorties' loop closures: "none", "self", "shared" or "both". Unset: the world's mission
   // setting, else `cooperation` as it is (closures within the sortie only, by default).
   std::optional<std::string> closures;
+  // m: stretches of a corrected sortie the shared map would move farther than this are not
+  // posted (CooperationConfig::post_gate_m). Unset: the world's mission setting, else 0 (off).
+  std::optional<double> post_gate_m;
   // m: returns this close to where a teammate reports itself are the teammate, and are not
   // logged or posted (Mapper::setTeammates); 0: teammates are logged like the world. 0.8 m:
   // a report is off by the teammate's drift, and stereo fattens its body; with 0.5 m, home-
@@ -191,6 +194,7 @@ struct RunResult {
     double planning_margin = 0.0;
     double preferred_margin = 0.0;
     std::string closures;  // none, self, shared or both
+    double post_gate_m = 0.0;
   };
   std::optional<MissionSettings> mission_settings;  // with --explore
   std::vector<TimelineSample> timeline;

@@ -77,6 +77,11 @@ void CooperationConfig::validate() const {
     throw std::invalid_argument(
         "cooperation config: fields 'closure_max_m', 'closure_max_rad', 'closure_sigma_xy', "
         "'closure_sigma_theta': expected positive numbers");
+  if (!(post_gate_m >= 0.0) || !(post_gate_rad > 0.0))
+    throw std::invalid_argument(
+        "cooperation config: fields 'post_gate_m' and 'post_gate_rad': expected a number >= 0 "
+        "(0: off) and a positive angle, got " +
+        std::to_string(post_gate_m) + " and " + std::to_string(post_gate_rad));
   if (!(closure_max_sigma_m >= closure_sigma_xy))
     throw std::invalid_argument(
         "cooperation config: field 'closure_max_sigma_m': expected a number >= closure_sigma_xy "
@@ -258,12 +263,59 @@ SortieReport HomeBaseCooperation::endSortie(const TraverseLog& sortie,
     rep.length_m += (sortie.entries[i].scan.odometry.translation() -
                      sortie.entries[i - 1].scan.odometry.translation())
                         .norm();
-  rep.post = shared_->post(correctedPost(sortie, c.poses, next_post_++));
+  TraverseLog kept;
+  std::vector<Pose2> kept_poses;
+  if (config_.post_gate_m > 0.0 && aligner) {
+    const std::vector<bool> misplaced =
+        misplacedEntries(sortie, c.poses, *aligner, config_.closure_scans,
+                         config_.closure_min_inliers, config_.post_gate_m, config_.post_gate_rad);
+    kept.robot = sortie.robot;
+    for (size_t i = 0; i < n; ++i) {
+      if (misplaced[i]) {
+        ++rep.withheld;
+        continue;
+      }
+      kept.entries.push_back(sortie.entries[i]);
+      kept_poses.push_back(c.poses[i]);
+    }
+    if (rep.withheld > 0)
+      rep.method += "; " + std::to_string(rep.withheld) +
+                    " radial maps withheld (the shared map says they are misplaced)";
+  }
+  rep.post = rep.withheld > 0 ? shared_->post(correctedPost(kept, kept_poses, next_post_++))
+                              : shared_->post(correctedPost(sortie, c.poses, next_post_++));
   rep.posted = rep.post.status == PostStatus::kAccepted;
   if (rep.posted)
     for (size_t i = 0; i < c.poses.size(); ++i)
       corrected_.push_back({sortie.entries[i].scan.stamp, c.poses[i]});
   return done();
+}
+
+std::vector<bool> misplacedEntries(const TraverseLog& log, const std::vector<Pose2>& poses,
+                                   const ScanAligner& aligner, int scans, double min_inliers,
+                                   double max_m, double max_rad) {
+  if (poses.size() != log.entries.size())
+    throw std::invalid_argument("misplacedEntries: " + std::to_string(poses.size()) +
+                                " poses for a log of " + std::to_string(log.entries.size()) +
+                                " entries");
+  if (scans < 1) throw std::invalid_argument("misplacedEntries: expected at least 1 scan");
+  const size_t n = log.entries.size(), k = static_cast<size_t>(scans);
+  std::vector<bool> out(n, false);
+  for (size_t begin = 0; begin < n; begin += k) {
+    // A rest shorter than a stretch joins the one before it.
+    const size_t end = n - begin < 2 * k ? n : begin + k;
+    const PlacedScans stretch(log, poses, begin, end);
+    const AlignmentResult a = aligner.align(stretch.pointers, Pose2());
+    if (a.ok && a.inliers >= min_inliers * a.points) {
+      const Pose2& mid = poses[(begin + end) / 2];
+      const Pose2 moved = a.correction * mid;
+      if ((moved.translation() - mid.translation()).norm() > max_m ||
+          std::abs(wrapAngle(moved.theta - mid.theta)) > max_rad)
+        for (size_t i = begin; i < end; ++i) out[i] = true;
+    }
+    if (end == n) break;
+  }
+  return out;
 }
 
 Eigen::Matrix2d HomeBaseCooperation::closureInformation(const AlignmentResult& a,

@@ -5,6 +5,7 @@
 // works on traverse logs, the same from the simulator, a recording or a real robot.
 #pragma once
 
+#include <cmath>
 #include <optional>
 #include <string>
 #include <vector>
@@ -66,6 +67,15 @@ struct CooperationConfig {
   // like the shared map's home, and is not shared.
   double min_home_agreement = 0.5;
   int home_check_scans = 30;
+  // Beyond the paper: before posting, the corrected sortie's stretches (closure_scans radial
+  // maps each, end to end) are aligned to the shared map once more, and a stretch the
+  // alignment would move farther than post_gate_m (or turn more than post_gate_rad) at its
+  // middle is withheld: the shared map says the correction misplaced it, and posting it would
+  // draw its walls where there are none and clear free space through real ones. Stretches
+  // that do not align (new territory, too few points) are posted. 0: off, everything posted
+  // (the default; the building turns it on, measured in the README).
+  double post_gate_m = 0.0;
+  double post_gate_rad = M_PI;
   void validate() const;  // throws std::invalid_argument naming the field
 
   // The loop closures by name: "none", "self" (within the sortie), "shared" (to the shared
@@ -87,6 +97,7 @@ struct SortieReport {
   bool posted = false;           // the corrected traverse was accepted by the shared map
   PostResult post;               // what the shared map said
   int closures = 0;              // stretches aligned to the shared map (pose-graph closures)
+  size_t withheld = 0;           // radial maps left out of the post (post_gate_m)
   double home_agreement = -1.0;  // share of the look's points on the shared map (-1: none)
   uint64_t map_version = 0;      // of the shared map imported afterwards
   // The systematic odometry errors the correction fitted (of the odometry the sortie ran
@@ -94,6 +105,15 @@ struct SortieReport {
   OdometryBias bias;
   double length_m = 0.0;
 };
+
+// The entries of a corrected traverse whose stretch the aligner's map says is misplaced.
+// The traverse is cut into stretches of `scans` entries, end to end (a shorter rest joins
+// the last); each is aligned, at `poses`, to the map, and its entries are flagged when the
+// alignment fits (at least `min_inliers` of its points on the map's obstacles) and would move
+// the stretch's middle pose farther than `max_m` or turn it more than `max_rad`.
+std::vector<bool> misplacedEntries(const TraverseLog& log, const std::vector<Pose2>& poses,
+                                   const ScanAligner& aligner, int scans, double min_inliers,
+                                   double max_m, double max_rad);
 
 class HomeBaseCooperation {
  public:

@@ -199,6 +199,7 @@ struct World {
     // The sorties' loop closures: "none", "self", "shared" or "both" (CooperationConfig::
     // closures and self_closures; `coopmap run --closures`).
     std::optional<std::string> closures;
+    std::optional<double> post_gate_m;  // m: CooperationConfig::post_gate_m (0: off)
   } exploration;
 
   // The floor's rectangles: `floor_areas`, or the bounding rectangle if that is empty.

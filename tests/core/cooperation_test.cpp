@@ -1,11 +1,15 @@
 // The cooperation layer's guards: bad configuration, a sortie without radial maps, and a
-// sortie that cannot be localized are reported and nothing reaches the shared map.
+// sortie that cannot be localized are reported and nothing reaches the shared map; the post
+// gate finds the stretches of a corrected traverse that the shared map says are misplaced.
+#include <cmath>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
 #include "core/agent/cooperation.h"
+#include "tests/core/segment_world.h"
 
 namespace coopmap {
 namespace {
@@ -23,17 +27,25 @@ MapLimits limits() { return MapLimits::covering({0, 0}, {10, 8}, 0.05); }
 
 TEST(CooperationTest, BadConfigurationNamesTheField) {
   LocalSharedMap shared(limits(), OccupancyConfig{});
+  // The message a configuration is refused with ("" when it is accepted).
+  auto refusal = [&](const CooperationConfig& c) -> std::string {
+    try {
+      HomeBaseCooperation coop("jose", homeBase(), 0.6, &shared, c);
+    } catch (const std::invalid_argument& e) {
+      return e.what();
+    }
+    return "";
+  };
   CooperationConfig c;
   c.max_fix_jump_m = 0.0;
-  try {
-    HomeBaseCooperation coop("jose", homeBase(), 0.6, &shared, c);
-    FAIL() << "expected std::invalid_argument";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("max_fix_jump_m"), std::string::npos) << e.what();
-  }
+  EXPECT_NE(refusal(c).find("max_fix_jump_m"), std::string::npos) << refusal(c);
+  c = CooperationConfig{};
+  c.post_gate_m = -0.1;
+  EXPECT_NE(refusal(c).find("post_gate_m"), std::string::npos) << refusal(c);
   c = CooperationConfig{};
   c.closure_min_inliers = 1.5;
-  EXPECT_THROW(HomeBaseCooperation("jose", homeBase(), 0.6, &shared, c), std::invalid_argument);
+  EXPECT_NE(refusal(c).find("closure_min_inliers"), std::string::npos) << refusal(c);
+  EXPECT_EQ(refusal(CooperationConfig{}), "");
   EXPECT_THROW(HomeBaseCooperation("jose", homeBase(), 0.6, nullptr), std::invalid_argument);
 }
 
@@ -76,6 +88,73 @@ TEST(CooperationTest, SortieWithoutAHomeBaseInViewIsNotShared) {
   EXPECT_FALSE(r.fixed);
   EXPECT_FALSE(r.posted);
   EXPECT_EQ(shared.version(), 0u);
+}
+
+// A 12 m x 2 m corridor with alcoves every 2 m on both sides (so that a stretch's alignment
+// is pinned along it too), walls as segments; x along the corridor.
+std::vector<test::Segment> corridor() {
+  std::vector<test::Segment> w;
+  for (int i = 0; i < 6; ++i) {
+    const double x = 2.0 * i;
+    for (const double y : {0.0, 2.0}) {
+      const double out = y == 0.0 ? -0.4 : 2.4;
+      w.push_back({{x, y}, {x + 1.4, y}});            // wall
+      w.push_back({{x + 1.4, y}, {x + 1.4, out}});    // alcove
+      w.push_back({{x + 1.4, out}, {x + 2.0, out}});  //
+      w.push_back({{x + 2.0, out}, {x + 2.0, y}});    //
+    }
+  }
+  return w;
+}
+
+TEST(CooperationTest, PostGateFlagsTheStretchesTheMapSaysAreMisplaced) {
+  // The shared map knows the corridor, from scans at true poses looking four ways.
+  const std::vector<test::Segment> world = corridor();
+  OccupancyGrid map(MapLimits::covering({-1, -1}, {13, 3}, 0.05), OccupancyConfig{});
+  for (int i = 0; i <= 70; ++i)
+    for (const double heading : {0.0, M_PI, M_PI / 2, -M_PI / 2}) {
+      const Pose2 pose(0.5 + 0.1 * i, 1.0, heading);
+      map.insert(test::cameraScan(pose, world), pose);
+    }
+  const ScanAligner aligner(map, AlignmentConfig{});
+  // A traverse east along the corridor, 0.1 m a scan. Its correction placed entries 30-59
+  // (x 3.5 - 6.4 m) 0.25 m too far north, the rest where they were. (Much farther off, a
+  // stretch may not fit the map at all, and cannot be judged: it is posted.)
+  TraverseLog log;
+  log.robot = "jose";
+  std::vector<Pose2> poses;
+  for (int i = 0; i < 110; ++i) {
+    const Pose2 truth(0.5 + 0.1 * i, 1.0, 0.0);
+    TraverseEntry e;
+    e.scan = test::cameraScan(truth, world);
+    e.scan.stamp = i / 3.0;
+    log.entries.push_back(e);
+    poses.push_back(i >= 30 && i < 60 ? Pose2(truth.x, truth.y + 0.25, truth.theta) : truth);
+  }
+  const std::vector<bool> flagged = misplacedEntries(log, poses, aligner, 6, 0.7, 0.15, M_PI);
+  ASSERT_EQ(flagged.size(), log.entries.size());
+  int wrong_kept = 0, right_withheld = 0;
+  for (int i = 0; i < 110; ++i) {
+    const bool misplaced = i >= 30 && i < 60;
+    wrong_kept += misplaced && !flagged[i];
+    right_withheld += !misplaced && flagged[i];
+  }
+  EXPECT_EQ(wrong_kept, 0);
+  EXPECT_EQ(right_withheld, 0);
+
+  // A turn error shows as well: entries 60-71 turned 8 degrees about their middle.
+  std::vector<Pose2> turned(poses.size());
+  for (int i = 0; i < 110; ++i) turned[i] = log.entries[i].scan.odometry;
+  const Pose2 pivot = turned[66];
+  for (int i = 60; i < 72; ++i)
+    turned[i] = pivot * Pose2(0, 0, 8.0 * M_PI / 180.0) * pivot.inverse() * turned[i];
+  const std::vector<bool> by_turn = misplacedEntries(log, turned, aligner, 6, 0.7, 0.15, 0.05);
+  for (int i = 0; i < 110; ++i) EXPECT_EQ(by_turn[i], i >= 60 && i < 72) << "entry " << i;
+  // Off by less than the gate: nothing is withheld.
+  std::vector<Pose2> nudged = poses;
+  for (int i = 30; i < 60; ++i) nudged[i] = Pose2(poses[i].x, poses[i].y - 0.15, poses[i].theta);
+  for (const bool f : misplacedEntries(log, nudged, aligner, 6, 0.7, 0.15, M_PI)) EXPECT_FALSE(f);
+  EXPECT_THROW(misplacedEntries(log, {}, aligner, 6, 0.7, 0.15, M_PI), std::invalid_argument);
 }
 
 }  // namespace

@@ -14,7 +14,7 @@
 namespace coopmap {
 namespace {
 
-using test::castRay;
+using test::cameraScan;
 using test::Segment;
 
 // A 6 m x 5 m room with a box in it, origin at its south-west corner.
@@ -23,30 +23,12 @@ std::vector<Segment> room() {
           {{3, 2}, {3.8, 2}}, {{3.8, 2}, {3.8, 2.6}}, {{3.8, 2.6}, {3, 2.6}}, {{3, 2.6}, {3, 2}}};
 }
 
-// What a 60-degree camera at `pose` sees of the segments: one reading per column.
-RadialMap scanAt(const Pose2& pose, const std::vector<Segment>& world) {
-  RadialMap m;
-  m.odometry = pose;
-  m.max_range = 4.0;
-  for (int k = 0; k < 80; ++k) {
-    RadialReading r;
-    r.bearing = (k - 39.5) / 79.0 * (M_PI / 3.0);
-    const double a = pose.theta + r.bearing;
-    const double t = castRay(world, pose.translation(), {std::cos(a), std::sin(a)}, 4.0);
-    r.range = t < 0.0 ? 4.0 : t;
-    r.kind = t < 0.0 ? RadialKind::kBeyond : RadialKind::kHit;
-    r.sigma = 0.01;
-    m.readings.push_back(r);
-  }
-  return m;
-}
-
 OccupancyGrid roomMap() {
   OccupancyGrid map(MapLimits::covering({-0.5, -0.5}, {6.5, 5.5}, 0.05), OccupancyConfig{});
   for (int i = 0; i < 36; ++i)
     for (const Eigen::Vector2d& p : {Eigen::Vector2d(1.5, 1.5), Eigen::Vector2d(4.5, 3.8)}) {
       const Pose2 pose(p.x(), p.y(), i * M_PI / 18.0);
-      map.insert(scanAt(pose, room()), pose);
+      map.insert(cameraScan(pose, room()), pose);
     }
   return map;
 }
@@ -60,7 +42,7 @@ std::vector<RadialMap> drifted(const Pose2& off, const std::vector<Segment>& wor
   std::vector<RadialMap> out;
   for (int i = 0; i < 6; ++i) {
     const Pose2 truth = kLast * Pose2(-0.1 * (5 - i), 0.0, 0.0);
-    RadialMap m = scanAt(truth, world);
+    RadialMap m = cameraScan(truth, world);
     m.odometry = frame_error * truth;
     out.push_back(m);
   }

@@ -6,6 +6,9 @@
 
 #include <Eigen/Core>
 
+#include "core/geometry/pose2.h"
+#include "core/perception/radial_map.h"
+
 namespace coopmap::test {
 
 struct Segment {
@@ -27,6 +30,25 @@ inline double castRay(const std::vector<Segment>& walls, const Eigen::Vector2d& 
     if (t > 0.0 && t <= max_range && u >= 0.0 && u <= 1.0 && (best < 0.0 || t < best)) best = t;
   }
   return best;
+}
+
+// What a 60-degree camera at `pose` sees of the segments: one reading per column (80),
+// hits within 4 m with a 1 cm range sigma, "beyond" where nothing is that near.
+inline RadialMap cameraScan(const Pose2& pose, const std::vector<Segment>& walls) {
+  RadialMap m;
+  m.odometry = pose;
+  m.max_range = 4.0;
+  for (int k = 0; k < 80; ++k) {
+    RadialReading r;
+    r.bearing = (k - 39.5) / 79.0 * (M_PI / 3.0);
+    const double a = pose.theta + r.bearing;
+    const double t = castRay(walls, pose.translation(), {std::cos(a), std::sin(a)}, 4.0);
+    r.range = t < 0.0 ? 4.0 : t;
+    r.kind = t < 0.0 ? RadialKind::kBeyond : RadialKind::kHit;
+    r.sigma = 0.01;
+    m.readings.push_back(r);
+  }
+  return m;
 }
 
 }  // namespace coopmap::test

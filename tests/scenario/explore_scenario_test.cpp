@@ -65,6 +65,7 @@ TEST(ExploreScenarioTest, TheBuildingsMissionSettingsApplyUnlessTheCommandLineSa
   EXPECT_EQ(r.mission_settings->planning_margin, 0.12);
   EXPECT_EQ(r.mission_settings->preferred_margin, 0.0);
   EXPECT_EQ(r.mission_settings->closures, "shared");
+  EXPECT_EQ(r.mission_settings->post_gate_m, 0.2);
   o.safety_distance = 0.6;
   o.passage_width = 0.0;
   o.calibrate_distance_scale = true;
@@ -72,9 +73,11 @@ TEST(ExploreScenarioTest, TheBuildingsMissionSettingsApplyUnlessTheCommandLineSa
   o.retry_frontiers = false;
   o.floor_edge_depth = 0.0;
   o.closures = "self";
+  o.post_gate_m = 0.0;
   r = runWorld(o);
   EXPECT_EQ(r.mission_settings->floor_edge_depth, 0.0);
   EXPECT_EQ(r.mission_settings->closures, "self");
+  EXPECT_EQ(r.mission_settings->post_gate_m, 0.0);
   EXPECT_TRUE(r.mission_settings->shaped_closures);
   EXPECT_EQ(r.mission_settings->safety_distance, 0.6);
   EXPECT_FALSE(r.mission_settings->retry_frontiers);
@@ -103,13 +106,16 @@ TEST(ExploreScenarioTest, TheBuildingsMissionSettingsApplyUnlessTheCommandLineSa
   EXPECT_EQ(r.mission_settings->planning_margin, 0.05);
   EXPECT_EQ(r.mission_settings->preferred_margin, 0.0);
   EXPECT_EQ(r.mission_settings->closures, "self");
+  EXPECT_EQ(r.mission_settings->post_gate_m, 0.0);
   o.planning_margin = 0.3;
   o.preferred_margin = 0.25;
   o.closures = "none";
+  o.post_gate_m = 0.3;
   r = runWorld(o);
   EXPECT_EQ(r.mission_settings->planning_margin, 0.3);
   EXPECT_EQ(r.mission_settings->preferred_margin, 0.25);
   EXPECT_EQ(r.mission_settings->closures, "none");
+  EXPECT_EQ(r.mission_settings->post_gate_m, 0.3);
   o.closures = "some";
   EXPECT_THROW(runWorld(o), std::invalid_argument);
 }

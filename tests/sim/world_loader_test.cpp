@@ -89,7 +89,7 @@ TEST(WorldLoaderTest, MissionSettingsOfABuildingAreReadAndChecked) {
       "slow_distance: 1, fringe_clearance: 0.3, goal_clearance: 0.4, retry_frontiers: true, "
       "floor_edge_depth: 1.5, shaped_closures: true, bump_away: true, visited_radius: 0.09, "
       "calibrate_distance_scale: false, passage_width: 1.2, sortie_budget_m: 30, "
-      "planning_margin: 0.2, preferred_margin: 0.3, closures: both}\n" +
+      "planning_margin: 0.2, preferred_margin: 0.3, closures: both, post_gate_m: 0.25}\n" +
           minimal(),
       "w.yaml");
   EXPECT_EQ(w.mission, "explore");
@@ -109,6 +109,7 @@ TEST(WorldLoaderTest, MissionSettingsOfABuildingAreReadAndChecked) {
   EXPECT_EQ(w.exploration.planning_margin, 0.2);
   EXPECT_EQ(w.exploration.preferred_margin, 0.3);
   EXPECT_EQ(w.exploration.closures, "both");
+  EXPECT_EQ(w.exploration.post_gate_m, 0.25);
   EXPECT_FALSE(parseWorld(minimal(), "w.yaml").exploration.safety_distance.has_value());
   const World building = loadWorld(kSrc + "/worlds/lab_corridor.yaml");
   EXPECT_TRUE(building.exploration.retry_frontiers.value_or(false));
@@ -126,6 +127,11 @@ TEST(WorldLoaderTest, MissionSettingsOfABuildingAreReadAndChecked) {
   e = errorOf("mission: {mode: explore, closures: all}\n" + minimal());
   EXPECT_NE(e.find("w.yaml:1:36: mission.closures: expected one of none, self, shared, both, "
                    "got 'all'"),
+            std::string::npos)
+      << e;
+  e = errorOf("mission: {mode: explore, post_gate_m: -0.2}\n" + minimal());
+  EXPECT_NE(e.find("w.yaml:1:39: mission.post_gate_m: expected metres in [0, 2] (0: off), "
+                   "got '-0.2'"),
             std::string::npos)
       << e;
   e = errorOf("mission: {mode: explore, budget: 3}\n" + minimal());
