@@ -116,7 +116,14 @@ void endSortie(RobotRun& r, LocalSharedMap& live, double now, double reapproach_
       char line[160];
       std::snprintf(line, sizeof line,
                     "back %.2f m from the start at %.0f s: driving there by a first fix", off, now);
-      r.result.sortie_log.push_back(line);
+      std::string moved;
+      if (first.fix_moved_m > 0.0) {
+        char m[96];
+        std::snprintf(m, sizeof m, " (moved %.2f m by the shared map: the look fits it there)",
+                      first.fix_moved_m);
+        moved = m;
+      }
+      r.result.sortie_log.push_back(line + moved);
       // The start in the estimate's frame now (the fix is in the chain's frame).
       r.mission->returnAgain(r.mapper->frame() * r.sortie_frame.inverse() *
                              first.correction.inverse() * r.home);

@@ -1,7 +1,14 @@
 // Corner landmarks: a whole-map corner search on a 40 m x 40 m grid at 5 cm (a building of
-// rooms and corridors drawn into it), and one home-base localization (two corners).
+// rooms and corridors drawn into it), one home-base localization (two corners), and the
+// search for a rival place for a look at home on such a shared map (the fix's rival check).
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "core/agent/cooperation.h"
 #include "core/landmarks/corner_detector.h"
 #include "core/localization/home_base.h"
 
@@ -58,7 +65,39 @@ void BM_HomeBaseLocalization(benchmark::State& state) {
   }
 }
 
+void BM_RivalPlacement(benchmark::State& state) {
+  // The building as a shared map, and a look from a room's corner: 300 points on the walls
+  // within 3.5 m, as CooperationConfig's check uses (search 2 m, shifts of at least 0.5 m,
+  // turns up to 4 degrees).
+  const GridU8 g = building();
+  std::vector<int16_t> log_odds(g.limits.width * g.limits.height);
+  std::vector<Eigen::Vector2d> walls;
+  const Eigen::Vector2d pivot(1.0, 1.0);
+  for (int iy = 0; iy < g.limits.height; ++iy)
+    for (int ix = 0; ix < g.limits.width; ++ix) {
+      const bool occ = g.at(ix, iy) == static_cast<uint8_t>(CellClass::kOccupied);
+      log_odds[iy * g.limits.width + ix] = occ ? 500 : -500;
+      const Eigen::Vector2d c = g.limits.cellCenter(ix, iy);
+      if (occ && (c - pivot).norm() < 3.5) walls.push_back(c);
+    }
+  OccupancyGrid map(g.limits, OccupancyConfig{});
+  map.assign(log_odds, std::vector<uint8_t>(log_odds.size(), 1));
+  const ScanAligner aligner(map);
+  std::vector<Eigen::Vector2d> look;
+  for (size_t i = 0; i < walls.size(); i += std::max<size_t>(1, walls.size() / 300))
+    look.push_back(walls[i]);
+  const RivalPlacement r = rivalPlacement(aligner, look, pivot, 2.0, 0.5, 4.0 * M_PI / 180.0);
+  for (auto _ : state) {
+    const RivalPlacement again = rivalPlacement(aligner, look, pivot, 2.0, 0.5, 4.0 * M_PI / 180.0);
+    benchmark::DoNotOptimize(again);
+  }
+  state.counters["points"] = static_cast<double>(look.size());
+  state.counters["here"] = r.here;
+  state.counters["rival"] = r.score;
+}
+
 BENCHMARK(BM_CornerSearch40mGrid)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_RivalPlacement)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_HomeBaseLocalization)->Unit(benchmark::kMillisecond);
 
 }  // namespace

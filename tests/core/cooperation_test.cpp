@@ -157,5 +157,55 @@ TEST(CooperationTest, PostGateFlagsTheStretchesTheMapSaysAreMisplaced) {
   EXPECT_THROW(misplacedEntries(log, {}, aligner, 6, 0.7, 0.15, M_PI), std::invalid_argument);
 }
 
+TEST(CooperationTest, RivalPlacementFindsWhereALookAtTwoAlikeCornersBelongs) {
+  // A room with two alike bumps on its east wall, 1.4 m apart (the home base's corners):
+  // from one of them, the other looks the same; the rest of the room tells them apart.
+  std::vector<test::Segment> room = {
+      {{0, -1}, {4, -1}}, {{4, -1}, {4, 5}}, {{4, 5}, {0, 5}}, {{0, 5}, {0, -1}}};
+  for (const double y : {0.8, 2.2}) {
+    room.push_back({{4.0, y - 0.2}, {3.7, y}});
+    room.push_back({{3.7, y}, {4.0, y + 0.2}});
+  }
+  OccupancyGrid map(MapLimits::covering({-1, -2}, {5, 6}, 0.05), OccupancyConfig{});
+  for (int i = 0; i < 5; ++i)
+    for (int h = 0; h < 8; ++h) {
+      const Pose2 pose(0.8 + 0.6 * i, 0.5 + 0.5 * i, h * M_PI / 4);
+      map.insert(test::cameraScan(pose, room), pose);
+    }
+  const ScanAligner aligner(map, AlignmentConfig{});
+  // The look: turning in place at (2.0, 1.5), placed 1.4 m too far north by a wrong fix.
+  std::vector<RadialMap> look;
+  for (int h = 0; h < 12; ++h)
+    look.push_back(test::cameraScan(Pose2(2.0, 1.5, h * M_PI / 6), room));
+  std::vector<const RadialMap*> pointers;
+  for (const RadialMap& m : look) pointers.push_back(&m);
+  const std::vector<Eigen::Vector2d> truth = aligner.obstaclePoints(pointers);
+  std::vector<Eigen::Vector2d> wrong;
+  for (const Eigen::Vector2d& p : truth) wrong.push_back(p + Eigen::Vector2d(0.0, 1.4));
+  const Eigen::Vector2d fix(2.0, 2.9);
+  const RivalPlacement r = rivalPlacement(aligner, wrong, fix, 2.0, 0.5, 4.0 * M_PI / 180.0);
+  EXPECT_GT(r.score, r.here + 0.3) << "here " << r.here << ", there " << r.score;
+  EXPECT_NEAR(r.correction.x, 0.0, 0.06);
+  EXPECT_NEAR(r.correction.y, -1.4, 0.06);
+  EXPECT_NEAR(r.correction.theta, 0.0, 1.01 * M_PI / 180.0);
+  // Placed right, nothing else fits as well.
+  const RivalPlacement right =
+      rivalPlacement(aligner, truth, {2.0, 1.5}, 2.0, 0.5, 4.0 * M_PI / 180.0);
+  EXPECT_GT(right.here, 0.9);
+  EXPECT_LT(right.score, right.here);
+  // The rival check's configuration is checked.
+  LocalSharedMap shared(limits(), OccupancyConfig{});
+  CooperationConfig c;
+  c.rival_min_shift_m = 3.0;
+  try {
+    HomeBaseCooperation coop("jose", homeBase(), 0.6, &shared, c);
+    ADD_FAILURE() << "a minimum shift beyond the search radius was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("rival_min_shift_m"), std::string::npos) << e.what();
+  }
+  c.rival_search_m = 0.0;  // off: the shift does not matter
+  EXPECT_NO_THROW(HomeBaseCooperation("jose", homeBase(), 0.6, &shared, c));
+}
+
 }  // namespace
 }  // namespace coopmap
