@@ -3,9 +3,11 @@
 //   rflex_emulator_run --link PATH [--silent] [--garbage] [--interrupt-after S] -- COMMAND...
 //
 // Starts the emulator on a pseudo-terminal, points the symlink PATH at it (so a config file
-// can name a fixed device), runs COMMAND (sending it SIGINT after S seconds with
-// --interrupt-after), then prints the emulated robot's final state to stderr ("emulator: pose
-// X Y THETA, speed V, axis commands N, brake on|off") and exits with COMMAND's exit code.
+// can name a fixed device), runs COMMAND (with --interrupt-after, sending it SIGINT S seconds
+// after its first axis command: the base is driving then, however long COMMAND took to start,
+// as under a sanitizer on a busy machine), then prints the emulated robot's final state to stderr
+// ("emulator: pose X Y THETA, speed V, axis commands N, brake on|off") and exits with COMMAND's
+// exit code.
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -73,11 +75,23 @@ int main(int argc, char** argv) {
     ::_exit(127);
   }
   int status = 0;
+  bool exited = false;
   if (interrupt_after >= 0.0) {
-    std::this_thread::sleep_for(std::chrono::duration<double>(interrupt_after));
-    ::kill(pid, SIGINT);
+    // Until the first axis command (at most 60 s), unless COMMAND ends first.
+    for (int k = 0; k < 6000 && emulator.counters().axis_commands == 0; ++k) {
+      const pid_t done = ::waitpid(pid, &status, WNOHANG);
+      if (done == pid) {
+        exited = true;
+        break;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    if (!exited) {
+      std::this_thread::sleep_for(std::chrono::duration<double>(interrupt_after));
+      ::kill(pid, SIGINT);
+    }
   }
-  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  while (!exited && ::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
   // Let the base come to rest after the last command.
   for (int k = 0; k < 200 && std::abs(emulator.linearVelocity()) > 0.0; ++k)
