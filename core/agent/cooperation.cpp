@@ -121,7 +121,17 @@ HomeBaseCooperation::HomeBaseCooperation(std::string robot, const HomeBase& nomi
   if (!shared_) throw std::invalid_argument("HomeBaseCooperation: no shared map service");
 }
 
-HomeBaseCooperation::Located HomeBaseCooperation::locateSortie(const TraverseLog& sortie) const {
+HomeBaseCooperation::SharedView::SharedView(const SharedMapService& shared,
+                                            const AlignmentConfig& config) {
+  const SharedMapSnapshot snap = shared.snapshot();
+  if (snap.version == 0) return;
+  map.emplace(shared.limits(), shared.config());
+  map->assign(snap.log_odds, snap.seen);
+  aligner.emplace(*map, config);
+}
+
+HomeBaseCooperation::Located HomeBaseCooperation::locateSortie(const TraverseLog& sortie,
+                                                               const SharedView& view) const {
   Located l;
   SortieReport& rep = l.rep;
   rep.sortie = static_cast<int>(reports_.size()) + 1;
@@ -164,7 +174,9 @@ HomeBaseCooperation::Located HomeBaseCooperation::locateSortie(const TraverseLog
   }
   l.observation = ret.observation;
   l.observation.entry -= offset;
-  if (reference_ && config_.rival_search_m > 0.0 && !checkRival(sortie, l)) return l;
+  if (reference_ && config_.rival_search_m > 0.0 && view.aligner &&
+      !checkRival(sortie, *view.aligner, l))
+    return l;
   const Pose2& estimate = sortie.entries[l.observation.entry].scan.odometry;
   rep.fix = l.observation.pose;
   rep.fix_stamp = sortie.entries[l.observation.entry].scan.stamp;
@@ -224,12 +236,8 @@ RivalPlacement rivalPlacement(const ScanAligner& aligner,
   return best;
 }
 
-bool HomeBaseCooperation::checkRival(const TraverseLog& sortie, Located& l) const {
-  const SharedMapSnapshot snap = shared_->snapshot();
-  if (snap.version == 0) return true;
-  OccupancyGrid map(shared_->limits(), shared_->config());
-  map.assign(snap.log_odds, snap.seen);
-  const ScanAligner aligner(map, config_.closure_alignment);
+bool HomeBaseCooperation::checkRival(const TraverseLog& sortie, const ScanAligner& aligner,
+                                     Located& l) const {
   // The look at home (the sortie's last radial maps) placed by the fix, on the sortie's
   // odometry about it.
   const size_t n = sortie.entries.size();
@@ -284,12 +292,14 @@ bool HomeBaseCooperation::checkRival(const TraverseLog& sortie, Located& l) cons
 }
 
 SortieReport HomeBaseCooperation::locate(const TraverseLog& sortie) const {
-  return locateSortie(sortie).rep;
+  return locateSortie(sortie, SharedView(*shared_, config_.closure_alignment)).rep;
 }
 
 SortieReport HomeBaseCooperation::endSortie(const TraverseLog& sortie,
                                             const std::optional<Eigen::Vector2d>& expected) {
-  Located l = locateSortie(sortie);
+  // The shared map as it is now, prepared for alignment (once).
+  const SharedView view(*shared_, config_.closure_alignment);
+  Located l = locateSortie(sortie, view);
   SortieReport& rep = l.rep;
   if (rep.fixed && expected &&
       (rep.fix.translation() - *expected).norm() > config_.max_disagreement_m) {
@@ -320,15 +330,7 @@ SortieReport HomeBaseCooperation::endSortie(const TraverseLog& sortie,
     rep.method += "; correction failed: " + c.message;
     return done();
   }
-  // The shared map as it is now, prepared for alignment (once).
-  const SharedMapSnapshot snap = shared_->snapshot();
-  std::optional<OccupancyGrid> map;
-  std::optional<ScanAligner> aligner;
-  if (snap.version > 0) {
-    map.emplace(shared_->limits(), shared_->config());
-    map->assign(snap.log_odds, snap.seen);
-    aligner.emplace(*map, config_.closure_alignment);
-  }
+  const std::optional<ScanAligner>& aligner = view.aligner;
   std::vector<PoseObservation> closures;
   std::string closure_note;
   const size_t n = sortie.entries.size();

@@ -186,11 +186,20 @@ class HomeBaseCooperation {
     PoseObservation observation;               // in the sortie's entries, when rep.fixed
     std::optional<HomeBaseProtocol> protocol;  // the first sortie's registration
   };
-  Located locateSortie(const TraverseLog& sortie) const;
+  // The shared map as it is now, prepared for alignment once per sortie (no aligner before
+  // the first post).
+  struct SharedView {
+    SharedView(const SharedMapService& shared, const AlignmentConfig& config);
+    SharedView(const SharedView&) = delete;
+    SharedView& operator=(const SharedView&) = delete;
+    std::optional<OccupancyGrid> map;
+    std::optional<ScanAligner> aligner;  // over *map
+  };
+  Located locateSortie(const TraverseLog& sortie, const SharedView& view) const;
   // The rival check (CooperationConfig::rival_search_m) of a located sortie's fix against
   // the shared map: true when it stands, possibly moved (noted in the report's method); false
   // when it is not trusted.
-  bool checkRival(const TraverseLog& sortie, Located& l) const;
+  bool checkRival(const TraverseLog& sortie, const ScanAligner& shared, Located& l) const;
   // Closures of the corrected sortie's stretches within entries [from, to) against a map
   // (the shared map as it is now, or the other half of the sortie).
   // A closure's position information (map frame) from its alignment's, at `at`.
