@@ -315,6 +315,14 @@ int main(int argc, char** argv) {
   cmd_traverse->add_option("--resolution", trav.resolution, "Map resolution (m)")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
+  cmd_traverse
+      ->add_option("--align-stretch", trav.align_stretch,
+                   "Also align each stretch of N entries (end to end) to the map from its "
+                   "logged poses and print how far the alignments move them, one row per "
+                   "stretch in stretches.csv (with exact poses, --odometry perfect, that is the "
+                   "scan alignment's own error; 0: off)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
 
   coopmap::RobotCommandOptions robot_options;
   auto* cmd_robot = app.add_subcommand(
@@ -366,6 +374,15 @@ int main(int argc, char** argv) {
           "%s/map.{pgm,yaml,png} written\n",
           t.robot.c_str(), t.entries, t.used, t.duration_s, t.path_length_m, t.turns, t.straights,
           trav.out_dir.c_str());
+      if (trav.align_stretch > 0) {
+        const coopmap::StretchAlignmentStats& a = t.alignment;
+        std::printf(
+            "stretches of %d aligned to the map: %d of %d; moved at their middle: RMS %.3f m, "
+            "%.2f deg; median %.3f m, %.2f deg; 90th percentile %.3f m, %.2f deg; mean turn "
+            "%+.2f deg\n",
+            trav.align_stretch, a.aligned, a.stretches, a.rms_m, a.rms_deg, a.median_m,
+            a.median_deg, a.p90_m, a.p90_deg, a.mean_deg);
+      }
     }
     if (cmd_drift->parsed()) {
       if (!drift_models.empty()) {

@@ -180,7 +180,8 @@ void endSortie(RobotRun& r, LocalSharedMap& live, double now, double reapproach_
     r.mission->continueAfterFix(now);
   else
     r.mission->finish("stopped: no trusted home-base fix after sortie " +
-                      std::to_string(rep.sortie) + ", the robot does not know where it is");
+                          std::to_string(rep.sortie) + ", the robot does not know where it is",
+                      false);
 }
 
 }  // namespace coopmap::run_detail

@@ -405,7 +405,8 @@ RunResult runWorld(const RunOptions& opt) {
             // Teammates report where they are: what this robot sees of them is not mapped.
             std::vector<Eigen::Vector2d> mates;
             for (const RobotRun& o : runs)
-              if (&o != &r) mates.push_back(o.mapper->estimate(o.odo).translation());
+              if (&o != &r && !(o.mission && o.mission->lost()))
+                mates.push_back(o.mapper->estimate(o.odo).translation());
             r.mapper->setTeammates(std::move(mates), opt.teammate_mask_m);
           }
           r.latest = &r.mapper->process(*frame, segment);
@@ -438,7 +439,9 @@ RunResult runWorld(const RunOptions& opt) {
         std::vector<Eigen::Vector2d> others, goals;
         for (const RobotRun& o : runs) {
           if (&o == &r) continue;
-          others.push_back(o.mapper->estimate(o.odo).translation());
+          // A lost teammate's report is not where it stands: it is seen like the world.
+          if (!(o.mission && o.mission->lost()))
+            others.push_back(o.mapper->estimate(o.odo).translation());
           if (o.mission)
             if (const std::optional<Eigen::Vector2d> g = o.mission->explorationGoal())
               goals.push_back(*g);

@@ -335,8 +335,9 @@ void MissionAgent::continueAfterFix(double now) {
   last_event_ = "sortie " + std::to_string(sortie_);
 }
 
-void MissionAgent::finish(const std::string& reason) {
+void MissionAgent::finish(const std::string& reason, bool position_known) {
   phase_ = MissionPhase::kDone;
+  lost_ = !position_known;
   follower_.reset();
   has_goal_ = false;
   last_event_ = reason;
@@ -417,7 +418,8 @@ MotionCommand MissionAgent::update(double now, const Pose2& odometry, const Occu
       // Wheels that push against something slip: the odometry no longer says where the robot
       // is, and a look at "home" from wherever it is could give a wrong fix. Stay put.
       finish("stopped: bumped " + std::to_string(sortie_bumps_) +
-             " times in this sortie, the odometry cannot be trusted");
+                 " times in this sortie, the odometry cannot be trusted",
+             false);
       return last_command_ = MotionCommand::stop();
     }
     if (phase_ == MissionPhase::kReturn) {

@@ -143,7 +143,12 @@ class MissionAgent {
   void returnAgain(const Pose2& home);
   // Ends the mission where the robot is (e.g. it could not be localized at home: it no
   // longer knows where it is, and exploring on would only drive it into things).
-  void finish(const std::string& reason);
+  // `position_known` false says so: its estimate is no longer where it stands (lost()).
+  void finish(const std::string& reason, bool position_known = true);
+  // Stopped for good without knowing where it is: teammates should not trust the position
+  // it reports (not keep clear of it there, not leave it out of their maps there) but see it
+  // as whatever else stands in their way.
+  bool lost() const { return lost_; }
   int sortie() const { return sortie_; }  // 1 for the first
   // Where the teammates are now (map frame, as they report it) and whether this robot has
   // the right of way over them (e.g. the lower index). Call before update.
@@ -230,6 +235,7 @@ class MissionAgent {
   Pose2 last_pose_;
   bool exploration_complete_ = false;
   int goals_reached_ = 0, goals_failed_ = 0, safety_stops_ = 0;
+  bool lost_ = false;
   std::string last_event_;
   MotionCommand last_command_;
   GridU8 visited_;               // cells the robot's body has covered: free, seen or not

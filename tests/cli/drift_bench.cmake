@@ -43,6 +43,30 @@ execute_process(COMMAND "${COOPMAP}" traverse "${log}" --out "${WORK_DIR}/t"
 if(NOT rc EQUAL 0 OR NOT out MATCHES "jose: [0-9]+ entries" OR NOT EXISTS "${WORK_DIR}/t/map.pgm")
   message(FATAL_ERROR "coopmap traverse failed on a good log (${rc}):\n${out}${err}")
 endif()
+# Its stretches aligned to the map rebuilt from it: one CSV row per stretch, and the
+# summary counts them (entries / 6, rounded down).
+execute_process(COMMAND "${COOPMAP}" traverse "${log}" --out "${WORK_DIR}/ta" --align-stretch 6
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0 OR NOT out MATCHES "jose: ([0-9]+) entries")
+  message(FATAL_ERROR "coopmap traverse --align-stretch failed (${rc}):\n${out}${err}")
+endif()
+math(EXPR expected "${CMAKE_MATCH_1} / 6")
+if(expected LESS 1 OR NOT out MATCHES "stretches of 6 aligned to the map: ([0-9]+) of ${expected};")
+  message(FATAL_ERROR "expected ${expected} stretches of 6 in the summary:\n${out}")
+endif()
+file(STRINGS "${WORK_DIR}/ta/stretches.csv" rows)
+list(LENGTH rows n)
+math(EXPR n "${n} - 1")
+list(GET rows 0 header)
+if(NOT n EQUAL expected OR NOT header MATCHES "^first_entry,x,y,theta_deg,.*,moved_m,turned_deg$")
+  message(FATAL_ERROR "stretches.csv: expected a header and ${expected} rows, got:\n${rows}")
+endif()
+execute_process(COMMAND "${COOPMAP}" traverse "${log}" --out "${WORK_DIR}/tb" --align-stretch -2
+                RESULT_VARIABLE rc ERROR_VARIABLE err)
+if(rc EQUAL 0 OR NOT err MATCHES "--align-stretch")
+  message(FATAL_ERROR "a negative --align-stretch was not refused clearly (${rc}):\n${err}")
+endif()
+
 execute_process(COMMAND "${CMAKE_COMMAND}" -E copy "${log}" "${WORK_DIR}/cut.traverse")
 file(SIZE "${log}" size)
 math(EXPR cut_size "${size} - 100")

@@ -79,6 +79,21 @@ TEST(MissionTest, StopsForGoodAfterTooManyBumpsInASortie) {
   EXPECT_EQ(bumps, c.max_sortie_bumps);
   EXPECT_NE(mission.lastEvent().find("bumped 2 times"), std::string::npos) << mission.lastEvent();
   EXPECT_EQ(mission.safetyStops(), 2);
+  // Its odometry slipped: it does not know where it stands, and says so (teammates then see
+  // it as an obstacle rather than keep clear of where it reports itself).
+  EXPECT_TRUE(mission.lost());
+}
+
+TEST(MissionTest, AMissionFinishedWhereItKnowsItIsIsNotLost) {
+  MissionAgent mission(Pose2(2.0, 3.0, 0.0), MissionConfig{});
+  EXPECT_FALSE(mission.lost());
+  mission.finish("exploration complete");
+  EXPECT_TRUE(mission.done());
+  EXPECT_FALSE(mission.lost());
+  MissionAgent unsure(Pose2(2.0, 3.0, 0.0), MissionConfig{});
+  unsure.finish("no trusted home-base fix", false);
+  EXPECT_TRUE(unsure.done());
+  EXPECT_TRUE(unsure.lost());
 }
 
 // With bump_away and a bearing from the base, the robot backs off away from the touch: a
