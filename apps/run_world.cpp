@@ -184,6 +184,18 @@ void drawProgress(double t, double total) {
   std::fflush(stderr);
 }
 
+// Where the teammates of `self` report themselves (map frame: their estimates). A teammate
+// that stopped without knowing where it is reports nothing: its estimate is not where it
+// stands, so it is seen (mapped, avoided) like the rest of the world.
+std::vector<Eigen::Vector2d> teammateReports(const std::vector<RobotRun>& runs,
+                                             const RobotRun& self) {
+  std::vector<Eigen::Vector2d> out;
+  for (const RobotRun& o : runs)
+    if (&o != &self && !(o.mission && o.mission->lost()))
+      out.push_back(o.mapper->estimate(o.odo).translation());
+  return out;
+}
+
 }  // namespace
 
 RunResult runWorld(const RunOptions& opt) {
@@ -403,11 +415,7 @@ RunResult runWorld(const RunOptions& opt) {
           if (r.calibrate) frame->odometry = r.calibration.calibrate(frame->odometry);
           if (runs.size() > 1 && opt.teammate_mask_m > 0.0) {
             // Teammates report where they are: what this robot sees of them is not mapped.
-            std::vector<Eigen::Vector2d> mates;
-            for (const RobotRun& o : runs)
-              if (&o != &r && !(o.mission && o.mission->lost()))
-                mates.push_back(o.mapper->estimate(o.odo).translation());
-            r.mapper->setTeammates(std::move(mates), opt.teammate_mask_m);
+            r.mapper->setTeammates(teammateReports(runs, r), opt.teammate_mask_m);
           }
           r.latest = &r.mapper->process(*frame, segment);
           if (r.tracker.hasMap() && !r.reapproaching &&
@@ -436,17 +444,12 @@ RunResult runWorld(const RunOptions& opt) {
       const Pose2 steer = opt.steer_by_truth ? sim.truePose(i) : r.result.estimate.back().pose;
       if (r.mission && runs.size() > 1) {
         // Teammates report where they believe they are (their estimates share the map frame).
-        std::vector<Eigen::Vector2d> others, goals;
-        for (const RobotRun& o : runs) {
-          if (&o == &r) continue;
-          // A lost teammate's report is not where it stands: it is seen like the world.
-          if (!(o.mission && o.mission->lost()))
-            others.push_back(o.mapper->estimate(o.odo).translation());
-          if (o.mission)
+        std::vector<Eigen::Vector2d> goals;
+        for (const RobotRun& o : runs)
+          if (&o != &r && o.mission)
             if (const std::optional<Eigen::Vector2d> g = o.mission->explorationGoal())
               goals.push_back(*g);
-        }
-        r.mission->setTeammates(std::move(others), &r == &runs.front());
+        r.mission->setTeammates(teammateReports(runs, r), &r == &runs.front());
         if (opt.coordinate) r.mission->setTeammateGoals(goals);
       }
       const RobotStatus status = r.driver->status();
