@@ -13,6 +13,7 @@
 #include "apps/corners_command.h"
 #include "apps/drift_command.h"
 #include "apps/odometry_fit_command.h"
+#include "apps/remap_command.h"
 #include "apps/replay_command.h"
 #include "apps/robot_command.h"
 #include "apps/run_mission_options.h"
@@ -324,6 +325,33 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
 
+  coopmap::RemapOptions remap;
+  auto* cmd_remap = app.add_subcommand(
+      "remap",
+      "Rebuild a run's map from its traverse logs at a chosen trajectory and score it against "
+      "the world's true occupancy: at the ground truth, what stereo alone allows; at the "
+      "corrected traverses, what their pose errors cost (false obstacles split by their "
+      "distance to the true ones).");
+  cmd_remap->add_option("run", remap.run_dir, "A `coopmap run` output folder")
+      ->required()
+      ->check(CLI::ExistingDirectory);
+  cmd_remap->add_option("--world", remap.world_file, "The world the run was in")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd_remap
+      ->add_option("--poses", remap.poses,
+                   "logged (the poses in the traverse logs: the live estimate), corrected, "
+                   "estimate, odometry or groundtruth (trajectory_<robot>_<poses>.tum)")
+      ->capture_default_str();
+  cmd_remap
+      ->add_option("--max-error", remap.max_error_m,
+                   "Only the radial maps whose pose is within this many metres of the ground "
+                   "truth (an oracle's choice; 0: all)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  cmd_remap->add_option("--out", remap.out_dir,
+                        "Folder for map.{pgm,yaml,png} and map_evaluation.png");
+
   coopmap::RobotCommandOptions robot_options;
   auto* cmd_robot = app.add_subcommand(
       "robot",
@@ -383,6 +411,22 @@ int main(int argc, char** argv) {
             trav.align_stretch, a.aligned, a.stretches, a.rms_m, a.rms_deg, a.median_m,
             a.median_deg, a.p90_m, a.p90_deg, a.mean_deg);
       }
+    }
+    if (cmd_remap->parsed()) {
+      const coopmap::RemapSummary r = coopmap::runRemap(remap);
+      const coopmap::MapMetrics& m = r.metrics;
+      std::string robots;
+      for (const std::string& name : r.robots) robots += (robots.empty() ? "" : ", ") + name;
+      std::printf(
+          "%s: %zu radial maps (%s), %zu at their %s poses (%zu with no such pose, %zu too far "
+          "from the truth)\nwall_recall %.4f false_occupied_rate %.4f coverage %.4f\n"
+          "false obstacles by cells to the nearest true one:",
+          remap.run_dir.c_str(), r.entries, robots.c_str(), r.used, remap.poses.c_str(),
+          r.without_pose, r.too_far, m.wall_recall, m.false_occupied_rate, m.coverage);
+      for (int b = 0; b < coopmap::MapMetrics::kDistanceBands; ++b)
+        std::printf(" %s: %.4f", coopmap::MapMetrics::kDistanceBandNames[b],
+                    m.false_occupied_by_distance[b]);
+      std::printf("\n");
     }
     if (cmd_drift->parsed()) {
       if (!drift_models.empty()) {

@@ -81,6 +81,10 @@ void writeOutputs(const RunOptions& opt, const sim::World& world, const RunResul
       j.beginObject(key);
       j.value("wall_recall", m.wall_recall).value("false_occupied_rate", m.false_occupied_rate);
       j.value("coverage", m.coverage);
+      j.beginObject("false_occupied_by_distance");
+      for (int b = 0; b < MapMetrics::kDistanceBands; ++b)
+        j.value(MapMetrics::kDistanceBandNames[b], m.false_occupied_by_distance[b]);
+      j.endObject();
       if (std::string(key) == "shared_map") {
         j.value("posts_accepted", shared.posts_accepted);
         std::string posted, refused;

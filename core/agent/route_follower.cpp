@@ -15,6 +15,7 @@ void RouteConfig::validate() const {
   if (!(linear_speed > 0.0)) bad("linear_speed", linear_speed);
   if (!(angular_speed > 0.0)) bad("angular_speed", angular_speed);
   if (!(heading_tolerance > 0.0)) bad("heading_tolerance", heading_tolerance);
+  if (!(face_tolerance > 0.0)) bad("face_tolerance", face_tolerance);
   if (!(arrive_tolerance > 0.0)) bad("arrive_tolerance", arrive_tolerance);
   if (!(heading_gain > 0.0)) bad("heading_gain", heading_gain);
 }
@@ -26,8 +27,12 @@ Waypoint parseWaypoint(const YamlField& f) {
     return wp;
   }
   if (!f.isMap()) f.fail("a waypoint: [x, y] or {at: [x, y], spin: true}");
-  f.allowOnly({"at", "wait", "spin", "spin_rate_deg"});
+  f.allowOnly({"at", "within", "face_deg", "wait", "spin", "spin_rate_deg"});
   wp.position = f["at"].asVector2();
+  if (f.has("within"))
+    wp.arrive_tolerance = f["within"].asDouble(0.001, 10.0, "metres in [0.001, 10]");
+  if (f.has("face_deg"))
+    wp.face = f["face_deg"].asDouble(-360.0, 360.0, "a heading in [-360, 360] deg") * M_PI / 180.0;
   if (f.has("wait")) wp.wait = f["wait"].asDouble(0.0, 600.0, "seconds in [0, 600]");
   if (f.has("spin")) wp.spin = f["spin"].asBool();
   if (f.has("spin_rate_deg"))
@@ -39,6 +44,16 @@ Waypoint parseWaypoint(const YamlField& f) {
 RouteFollower::RouteFollower(std::vector<Waypoint> route, const RouteConfig& config)
     : route_(std::move(route)), config_(config) {
   config_.validate();
+}
+
+MotionCommand RouteFollower::arrived(const Waypoint& wp, const Pose2& pose, double now) {
+  if (wp.wait > 0.0) {
+    phase_ = Phase::kWait;
+    wait_until_ = now + wp.wait;
+    return MotionCommand::stop();
+  }
+  afterWait(wp, pose);
+  return MotionCommand::stop();
 }
 
 void RouteFollower::afterWait(const Waypoint& wp, const Pose2& pose) {
@@ -58,9 +73,11 @@ MotionCommand RouteFollower::update(const Pose2& pose, double now) {
     const Eigen::Vector2d to = wp.position - pose.translation();
     const double dist = to.norm();
     const double bearing_err = wrapAngle(std::atan2(to.y(), to.x()) - pose.theta);
+    const double arrive =
+        wp.arrive_tolerance > 0.0 ? wp.arrive_tolerance : config_.arrive_tolerance;
     switch (phase_) {
       case Phase::kTurn:
-        if (dist < config_.arrive_tolerance) {
+        if (dist < arrive) {
           phase_ = Phase::kDrive;
           continue;
         }
@@ -75,13 +92,13 @@ MotionCommand RouteFollower::update(const Pose2& pose, double now) {
         continue;
       case Phase::kDrive: {
         // Arrived, or passed the waypoint (it is now behind the robot).
-        if (dist < config_.arrive_tolerance || std::abs(bearing_err) > M_PI / 2) {
-          if (wp.wait > 0.0) {
-            phase_ = Phase::kWait;
-            wait_until_ = now + wp.wait;
-            return MotionCommand::stop();
+        if (dist < arrive || std::abs(bearing_err) > M_PI / 2) {
+          if (wp.face) {
+            phase_ = Phase::kFace;
+            continue;
           }
-          afterWait(wp, pose);
+          const MotionCommand c = arrived(wp, pose, now);
+          if (phase_ == Phase::kWait) return c;
           continue;
         }
         if (std::abs(bearing_err) > 0.35) {  // knocked off course: turn in place again
@@ -92,6 +109,19 @@ MotionCommand RouteFollower::update(const Pose2& pose, double now) {
         const double w = std::clamp(config_.heading_gain * bearing_err, -config_.angular_speed,
                                     config_.angular_speed);
         return {v, w};
+      }
+      case Phase::kFace: {
+        // Slowly at the end, to within face_tolerance: a look that starts as the start's did
+        // sees the same things in the same image columns.
+        const double err = wrapAngle(*wp.face - pose.theta);
+        if (std::abs(err) > config_.face_tolerance) {
+          const double w =
+              std::clamp(config_.heading_gain * err, -config_.angular_speed, config_.angular_speed);
+          return {0.0, std::abs(w) < 0.02 ? std::copysign(0.02, err) : w};
+        }
+        const MotionCommand c = arrived(wp, pose, now);
+        if (phase_ == Phase::kWait) return c;
+        continue;
       }
       case Phase::kWait:
         if (now < wait_until_ - 1e-9) return MotionCommand::stop();

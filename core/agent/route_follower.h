@@ -2,6 +2,7 @@
 // next waypoint, drive straight to it, optionally spin a full turn there to look around.
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -17,18 +18,24 @@ struct Waypoint {
   bool spin = false;                   // turn a full circle on arrival
   double spin_rate = 0.0;              // rad/s for that turn; 0: the route's turn rate
   double wait = 0.0;                   // s to stand still on arrival (before a spin)
+  // rad, odometry (map) frame: on arrival, first turn in place to this heading (then wait,
+  // then spin). A look at the home base this way starts as the start's look did.
+  std::optional<double> face = std::nullopt;
+  double arrive_tolerance = 0.0;  // m: arrived within this; 0: the route's
 };
 
 struct RouteConfig {
   double linear_speed = 0.4;        // m/s cruise
   double angular_speed = 0.7;       // rad/s for turns in place
   double heading_tolerance = 0.03;  // rad: turn until within this, then drive
+  double face_tolerance = 0.003;    // rad: a waypoint's `face` heading is turned to this well
   double arrive_tolerance = 0.05;   // m
   double heading_gain = 2.0;        // rad/s per rad of heading error while driving
   void validate() const;            // throws std::invalid_argument naming the field
 };
 
-// A waypoint from YAML: `[x, y]` or `{at: [x, y], wait: s, spin: true, spin_rate_deg: d}`;
+// A waypoint from YAML: `[x, y]` or
+// `{at: [x, y], within: m, face_deg: h, wait: s, spin: true, spin_rate_deg: d}`;
 // ConfigError naming the file, line and field otherwise.
 Waypoint parseWaypoint(const YamlField& f);
 
@@ -43,7 +50,8 @@ class RouteFollower {
   size_t nextWaypoint() const { return next_; }
 
  private:
-  enum class Phase { kTurn, kDrive, kWait, kSpin };
+  enum class Phase { kTurn, kDrive, kFace, kWait, kSpin };
+  MotionCommand arrived(const Waypoint& wp, const Pose2& pose, double now);  // at the waypoint
   void afterWait(const Waypoint& wp, const Pose2& pose);  // arrived and waited: spin or go on
   std::vector<Waypoint> route_;
   RouteConfig config_;

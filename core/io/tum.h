@@ -20,4 +20,11 @@ std::string formatTum(const std::vector<StampedPose2>& trajectory, const std::st
 void writeTum(const std::string& path, const std::vector<StampedPose2>& trajectory,
               const std::string& comment);
 
+// Parses a TUM trajectory (comment lines start with '#'; the heading is the rotation's yaw).
+// Throws std::runtime_error naming `source` and the line for a line that is not 8 numbers
+// or a timestamp earlier than the one before.
+std::vector<StampedPose2> parseTum(const std::string& text, const std::string& source);
+// Reads a TUM file (parseTum; std::runtime_error naming the file if it cannot be read).
+std::vector<StampedPose2> readTum(const std::string& path);
+
 }  // namespace coopmap

@@ -3,6 +3,9 @@
 #include <stdexcept>
 #include <vector>
 
+#include <opencv2/core/mat.hpp>
+#include <opencv2/imgproc.hpp>
+
 namespace coopmap {
 
 GridU8 reachableFree(const GridU8& truth, const Eigen::Vector2d& start, const GridU8* drivable) {
@@ -43,7 +46,16 @@ MapMetrics computeMapMetrics(const OccupancyGrid& map, const GridU8& truth,
   };
   MapMetrics m;
   int wall_hits = 0, false_occ = 0, covered = 0;
+  std::array<int, MapMetrics::kDistanceBands> false_by_band{};
   const GridU8 reach = reachableFree(truth, start, drivable);
+  // Chessboard distance (cells) of every cell to the nearest true obstacle.
+  cv::Mat not_obstacle(lim.height, lim.width, CV_8U), to_obstacle;
+  for (int y = 0; y < lim.height; ++y)
+    for (int x = 0; x < lim.width; ++x) not_obstacle.at<uint8_t>(y, x) = truth.at(x, y) ? 0 : 255;
+  cv::distanceTransform(not_obstacle, to_obstacle, cv::DIST_C, 3);
+  auto band = [](float d) {
+    return d < 2.5f ? 0 : d < 3.5f ? 1 : d < 5.5f ? 2 : d < 10.5f ? 3 : 4;
+  };
   for (int y = 0; y < lim.height; ++y) {
     for (int x = 0; x < lim.width; ++x) {
       if (truth.at(x, y)) {
@@ -65,12 +77,19 @@ MapMetrics computeMapMetrics(const OccupancyGrid& map, const GridU8& truth,
       // More than one cell from any true obstacle: none in the 8-neighbourhood.
       if (neighbourhood(x, y, [&](int a, int b) { return truth.at(a, b) != 0; })) continue;
       ++m.clear_observed_cells;
-      if (map.state(x, y) == CellState::kOccupied) ++false_occ;
+      if (map.state(x, y) == CellState::kOccupied) {
+        ++false_occ;
+        ++false_by_band[band(to_obstacle.at<float>(y, x))];
+      }
     }
   }
   m.wall_recall = m.wall_cells ? static_cast<double>(wall_hits) / m.wall_cells : 0.0;
   m.false_occupied_rate =
       m.clear_observed_cells ? static_cast<double>(false_occ) / m.clear_observed_cells : 0.0;
+  for (int b = 0; b < MapMetrics::kDistanceBands; ++b)
+    m.false_occupied_by_distance[b] =
+        m.clear_observed_cells ? static_cast<double>(false_by_band[b]) / m.clear_observed_cells
+                               : 0.0;
   m.coverage = m.reachable_cells ? static_cast<double>(covered) / m.reachable_cells : 0.0;
   return m;
 }

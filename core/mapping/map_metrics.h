@@ -1,6 +1,8 @@
 // Map quality against the true occupancy of the world (same MapLimits as the map).
 #pragma once
 
+#include <array>
+
 #include "core/mapping/grid.h"
 #include "core/mapping/occupancy_grid.h"
 
@@ -16,6 +18,13 @@ struct MapMetrics {
   // Fraction of the true free area reachable from the start cell (4-connected) that the
   // map has observed.
   double coverage = 0.0;
+  // false_occupied_rate split by how far (cells, chessboard) each false obstacle lies from
+  // the nearest true one: 2 (a wall drawn a cell thick or off), 3, 4-5, 6-10, 11 and more
+  // (obstacles where there are none). Same denominator: the five sum to the rate.
+  static constexpr int kDistanceBands = 5;
+  static constexpr const char* kDistanceBandNames[kDistanceBands] = {"2", "3", "4-5", "6-10",
+                                                                     "11+"};
+  std::array<double, kDistanceBands> false_occupied_by_distance{};
   int wall_cells = 0;            // denominator of wall_recall
   int clear_observed_cells = 0;  // denominator of false_occupied_rate
   int reachable_cells = 0;       // denominator of coverage

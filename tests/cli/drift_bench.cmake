@@ -82,4 +82,34 @@ endif()
 if(EXISTS "${WORK_DIR}/t2")
   message(FATAL_ERROR "coopmap traverse wrote outputs for a corrupt log")
 endif()
+# The run's map rebuilt at its true poses: every radial map placed, scored against the truth.
+execute_process(COMMAND "${COOPMAP}" remap "${WORK_DIR}/run" --world "${SOURCE_DIR}/worlds/lab.yaml"
+                        --poses groundtruth --out "${WORK_DIR}/remap"
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0 OR NOT out MATCHES "([0-9]+) radial maps \\(jose\\), ([0-9]+) at their groundtruth poses")
+  message(FATAL_ERROR "coopmap remap failed (${rc}):\n${out}${err}")
+endif()
+if(NOT CMAKE_MATCH_1 EQUAL CMAKE_MATCH_2 OR CMAKE_MATCH_1 LESS 3
+   OR NOT out MATCHES "wall_recall 0\\.[0-9]+ false_occupied_rate 0\\.[0-9]+ coverage 0\\.[0-9]+"
+   OR NOT out MATCHES "2: 0\\.[0-9]+ 3: 0\\.[0-9]+ 4-5: 0\\.[0-9]+ 6-10: 0\\.[0-9]+ 11\\+: 0\\.[0-9]+"
+   OR NOT EXISTS "${WORK_DIR}/remap/map_evaluation.png")
+  message(FATAL_ERROR "coopmap remap: expected every radial map placed and the scores:\n${out}")
+endif()
+# A run of one robot has no corrected traverses: the missing file is named.
+execute_process(COMMAND "${COOPMAP}" remap "${WORK_DIR}/run" --world "${SOURCE_DIR}/worlds/lab.yaml"
+                RESULT_VARIABLE rc ERROR_VARIABLE err)
+if(rc EQUAL 0 OR NOT err MATCHES "trajectory_jose_corrected\\.tum: cannot read")
+  message(FATAL_ERROR "a missing trajectory was not reported clearly (${rc}):\n${err}")
+endif()
+# A corrupt trajectory line is named by file and line, and nothing is written.
+file(MAKE_DIRECTORY "${WORK_DIR}/bad_run")
+file(COPY "${log}" DESTINATION "${WORK_DIR}/bad_run")
+file(WRITE "${WORK_DIR}/bad_run/trajectory_jose_groundtruth.tum" "# truth\n0 1 2 0 0 0 0 1\n0.1 1 2\n")
+execute_process(COMMAND "${COOPMAP}" remap "${WORK_DIR}/bad_run" --world "${SOURCE_DIR}/worlds/lab.yaml"
+                        --poses groundtruth --out "${WORK_DIR}/bad_remap"
+                RESULT_VARIABLE rc ERROR_VARIABLE err)
+if(rc EQUAL 0 OR NOT err MATCHES "trajectory_jose_groundtruth\\.tum:3: expected 8 numbers"
+   OR EXISTS "${WORK_DIR}/bad_remap")
+  message(FATAL_ERROR "a corrupt trajectory was not reported clearly (${rc}):\n${err}")
+endif()
 message(STATUS "drift benchmark outputs and traverse log errors are as documented")

@@ -45,9 +45,36 @@ TEST(MapMetricsTest, CountsWallsFalseObstaclesAndCoverage) {
   // them, (3, 0), is marked occupied.
   EXPECT_EQ(m.clear_observed_cells, 11);
   EXPECT_DOUBLE_EQ(m.false_occupied_rate, 1.0 / 11.0);
+  // The phantom is 5 cells from the wall.
+  for (int b = 0; b < MapMetrics::kDistanceBands; ++b)
+    EXPECT_DOUBLE_EQ(m.false_occupied_by_distance[b], b == 2 ? 1.0 / 11.0 : 0.0)
+        << MapMetrics::kDistanceBandNames[b];
   // Reachable free space: the 8 x 5 cells left of the wall; seen: (0..7, 2) and (0..3, 0).
   EXPECT_EQ(m.reachable_cells, 40);
   EXPECT_DOUBLE_EQ(m.coverage, 12.0 / 40.0);
+}
+
+TEST(MapMetricsTest, FalseObstaclesAreSplitByTheirDistanceToTheTrueOnes) {
+  Fixture f;
+  OccupancyGrid map(f.lim, OccupancyConfig{});
+  for (int i = 0; i < 2; ++i) {
+    map.insert(oneRay(0.59), Pose2(0.05, 0.05, 0.0));  // cell (6, 0): 2 cells from the wall
+    map.insert(oneRay(0.49), Pose2(0.05, 0.45, 0.0));  // cell (5, 4): 3 cells from it
+    map.insert(oneRay(0.09), Pose2(0.05, 0.25, 0.0));  // cell (1, 2): 7 cells from it
+  }
+  ASSERT_EQ(map.state(6, 0), CellState::kOccupied);
+  ASSERT_EQ(map.state(5, 4), CellState::kOccupied);
+  ASSERT_EQ(map.state(1, 2), CellState::kOccupied);
+  const MapMetrics m = computeMapMetrics(map, f.truth, {0.05, 0.25});
+  // Seen, more than a cell from the wall: (0..6, 0), (0..5, 4), (0..1, 2).
+  ASSERT_EQ(m.clear_observed_cells, 15);
+  const double one = 1.0 / 15.0;
+  EXPECT_DOUBLE_EQ(m.false_occupied_by_distance[0], one);
+  EXPECT_DOUBLE_EQ(m.false_occupied_by_distance[1], one);
+  EXPECT_DOUBLE_EQ(m.false_occupied_by_distance[2], 0.0);
+  EXPECT_DOUBLE_EQ(m.false_occupied_by_distance[3], one);
+  EXPECT_DOUBLE_EQ(m.false_occupied_by_distance[4], 0.0);
+  EXPECT_DOUBLE_EQ(m.false_occupied_rate, 3 * one);
 }
 
 TEST(MapMetricsTest, MissedWallLowersRecall) {

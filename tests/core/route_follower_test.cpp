@@ -65,6 +65,44 @@ TEST(RouteFollowerTest, WaitsThenSpins) {
   EXPECT_GT(f.update(Pose2(), 3.0).angular, 0.0);  // then the spin begins
 }
 
+TEST(RouteFollowerTest, ArrivesWithinTheWaypointsOwnTolerance) {
+  Waypoint near;
+  near.position = {1.3, 0.4};
+  near.arrive_tolerance = 0.01;  // the route's is 5 cm
+  RouteFollower f({near}, RouteConfig{});
+  const Trace t = drive(f, Pose2(0, 0, 0));
+  ASSERT_TRUE(f.done());
+  EXPECT_LT(std::hypot(t.final_pose.x - 1.3, t.final_pose.y - 0.4), 0.012);
+}
+
+TEST(RouteFollowerTest, FacesTheGivenHeadingThenWaitsThenSpins) {
+  Waypoint look;
+  look.position = {1.0, 0.0};
+  look.face = -2.5;  // rad: behind and to the right of the way it arrives
+  look.wait = 2.0;
+  look.spin = true;
+  RouteFollower f({look}, RouteConfig{});
+  Pose2 pose(0, 0, 0);
+  double t = 0.0, still_since = -1.0, heading_when_still = 0.0;
+  bool spun = false;
+  for (int i = 0; i < 20000 && !f.done(); ++i, t += 0.05) {
+    const MotionCommand c = f.update(pose, t);
+    if (c.linear == 0.0 && c.angular == 0.0 && (pose.translation() - look.position).norm() < 0.06) {
+      if (still_since < 0.0) still_since = t, heading_when_still = pose.theta;
+    } else if (still_since >= 0.0 && c.angular > 0.0 && c.linear == 0.0) {
+      spun = true;
+      // The wait came after the turn to the heading, and lasted as asked.
+      EXPECT_NEAR(t - still_since, 2.0, 0.06);
+      break;
+    }
+    pose.x += c.linear * 0.05 * std::cos(pose.theta);
+    pose.y += c.linear * 0.05 * std::sin(pose.theta);
+    pose.theta = wrapAngle(pose.theta + c.angular * 0.05);
+  }
+  ASSERT_TRUE(spun);
+  EXPECT_NEAR(wrapAngle(heading_when_still - -2.5), 0.0, RouteConfig{}.face_tolerance + 0.002);
+}
+
 TEST(RouteFollowerTest, EmptyRouteStops) {
   RouteFollower f({}, RouteConfig{});
   EXPECT_TRUE(f.done());

@@ -175,6 +175,21 @@ TEST(WorldLoaderTest, WaypointOffTheFloor) {
   EXPECT_EQ(e, "w.yaml:16:21: robots[0].route[1]: expected a waypoint on the floor, got a list");
 }
 
+TEST(WorldLoaderTest, WaypointFacesAHeadingWithinItsOwnTolerance) {
+  const World w = parseWorld(
+      replaceLine(minimal(), 16,
+                  "    route: [{at: [3, 3], within: 0.01, face_deg: -90, wait: 2, spin: true}]"),
+      "w.yaml");
+  ASSERT_EQ(w.robots[0].route.size(), 1u);
+  const auto& wp = w.robots[0].route[0];
+  ASSERT_TRUE(wp.face.has_value());
+  EXPECT_NEAR(*wp.face, -M_PI / 2, 1e-12);
+  EXPECT_EQ(wp.arrive_tolerance, 0.01);
+  EXPECT_EQ(wp.wait, 2.0);
+  EXPECT_EQ(errorOf(replaceLine(minimal(), 16, "    route: [{at: [3, 3], within: 0}]")),
+            "w.yaml:16:34: robots[0].route[0].within: expected metres in [0.001, 10], got '0'");
+}
+
 // A building's floor is its rooms and corridors: an L of two rectangles here.
 TEST(WorldLoaderTest, FloorOfRoomsAndCorridorsIsTheirRectangles) {
   const std::string l_shape =
