@@ -160,7 +160,7 @@ HomeBaseCooperation::Located HomeBaseCooperation::locateSortie(const TraverseLog
     TraverseLog joined = reference_log_;
     offset = joined.entries.size();
     joined.entries.insert(joined.entries.end(), sortie.entries.begin(), sortie.entries.end());
-    ret = localizeFromLog(joined, home_, arm_length_, bounded, &*reference_);
+    ret = localizeFromLog(joined, home_, arm_length_, bounded, &*reference_, offset);
     rep.method = ret.refined ? "alignment to the reference" : "corners";
     if (ret.status == HomeReturnStatus::kOk && ret.observation.entry < offset) {
       rep.method = "the fix fell on a reference scan, not on the return turn";

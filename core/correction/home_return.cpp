@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace coopmap {
 
@@ -156,10 +157,12 @@ OccupancyGrid homeBaseReferenceMap(const TraverseLog& log, const HomeReturnConfi
 }
 
 HomeReturn localizeFromLog(const TraverseLog& log, const HomeBase& home, double arm_length,
-                           const HomeReturnConfig& config, const OccupancyGrid* reference) {
+                           const HomeReturnConfig& config, const OccupancyGrid* reference,
+                           size_t first_return) {
   config.validate();
   HomeReturn out;
-  const std::vector<size_t> turn = turnInPlaceEntries(log, true, config.turn_radius);
+  std::vector<size_t> turn = turnInPlaceEntries(log, true, config.turn_radius);
+  std::erase_if(turn, [&](size_t i) { return i < first_return; });
   if (turn.size() < 4) return out;
   out.status = HomeReturnStatus::kHomeBaseNotFound;
   const Pose2 at_turn = log.entries[turn.back()].scan.odometry;

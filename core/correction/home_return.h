@@ -96,9 +96,11 @@ struct HomeReturn {
 // position from the corners, heading from the line joining them). With a `reference` map
 // (see homeBaseReferenceMap), the fix is then refined by aligning those scans' obstacle
 // points to it.
+// Entries before `first_return` are never part of the return turn (scans put in front of
+// the log to stand for the start, which a sortie that never left home would otherwise join).
 HomeReturn localizeFromLog(const TraverseLog& log, const HomeBase& home, double arm_length,
                            const HomeReturnConfig& config = {},
-                           const OccupancyGrid* reference = nullptr);
+                           const OccupancyGrid* reference = nullptr, size_t first_return = 0);
 
 // The home-base protocol on a whole log: registration from the start turn (corners near
 // `nominal`, the home base as designed; if they are not found, the nominal corners stand in:

@@ -90,6 +90,68 @@ TEST(CooperationTest, SortieWithoutAHomeBaseInViewIsNotShared) {
   EXPECT_EQ(shared.version(), 0u);
 }
 
+// A room with furniture for looks at home: the robot starts at (1.5, 1.5) facing +x.
+std::vector<test::Segment> homeRoom() {
+  return {{{0, 0}, {6, 0}},         {{6, 0}, {6, 4}},         {{6, 4}, {0, 4}},
+          {{0, 4}, {0, 0}},         {{3.0, 0.6}, {3.4, 0.6}}, {{3.4, 0.6}, {3.4, 1.0}},
+          {{3.0, 2.4}, {3.6, 2.0}}, {{1.0, 3.0}, {1.8, 3.2}}, {{4.5, 1.5}, {4.8, 1.2}}};
+}
+
+// A turn in place of a full circle (and a little more) at `at`, from `heading`.
+void lookAround(TraverseLog& log, const Eigen::Vector2d& at, double heading, double& t) {
+  for (int i = 0; i <= 66; ++i) {
+    TraverseEntry e;
+    e.segment = MotionSegment::kTurn;
+    e.scan = test::cameraScan(Pose2(at.x(), at.y(), wrapAngle(heading + 0.1 * i)), homeRoom());
+    e.scan.stamp = t += 1.0 / 3.0;
+    log.entries.push_back(e);
+  }
+}
+
+TEST(CooperationTest, ASortieThatNeverLeftHomeIsFixedOnItsOwnTurn) {
+  // Sortie 1: still at the start, the look, out 1 m and back, the look again. Sortie 2:
+  // the robot has nowhere left to go and only looks again where it stands. The scans of
+  // the start's look go in front of sortie 2 for its localization; its turn must not reach
+  // back into them (it stood where they were taken).
+  LocalSharedMap shared(MapLimits::covering({-1, -1}, {7, 5}, 0.05), OccupancyConfig{});
+  HomeBaseCooperation coop("jose", homeBase(), 0.6, &shared);
+  const Eigen::Vector2d home(1.5, 1.5);
+  double t = 0.0;
+  TraverseLog first;
+  first.robot = "jose";
+  for (int i = 0; i < 9; ++i) {
+    TraverseEntry e;
+    e.segment = MotionSegment::kStop;
+    e.scan = test::cameraScan(Pose2(home.x(), home.y(), 0.0), homeRoom());
+    e.scan.stamp = t += 1.0 / 3.0;
+    first.entries.push_back(e);
+  }
+  lookAround(first, home, 0.0, t);
+  for (int i = 1; i <= 20; ++i) {  // out and back along +x
+    const double x = home.x() + (i <= 10 ? i : 20 - i) * 0.1;
+    TraverseEntry e;
+    e.segment = MotionSegment::kStraight;
+    e.scan = test::cameraScan(Pose2(x, home.y(), i <= 10 ? 0.0 : M_PI), homeRoom());
+    e.scan.stamp = t += 1.0 / 3.0;
+    first.entries.push_back(e);
+  }
+  lookAround(first, home, M_PI, t);
+  const SortieReport one = coop.endSortie(first);
+  ASSERT_TRUE(one.fixed) << one.method;
+  TraverseLog second;
+  second.robot = "jose";
+  lookAround(second, home, wrapAngle(M_PI + 6.6), t);
+  const SortieReport two = coop.endSortie(second);
+  ASSERT_TRUE(two.fixed) << two.method;
+  EXPECT_GE(two.fix_stamp, second.entries.front().scan.stamp);
+  EXPECT_LT((two.fix.translation() - home).norm(), 0.02);
+  const Pose2* at = nullptr;
+  for (const TraverseEntry& e : second.entries)
+    if (e.scan.stamp == two.fix_stamp) at = &e.scan.odometry;
+  ASSERT_NE(at, nullptr);
+  EXPECT_LT(std::abs(wrapAngle(two.fix.theta - at->theta)), 0.5 * M_PI / 180.0);
+}
+
 // A 12 m x 2 m corridor with alcoves every 2 m on both sides (so that a stretch's alignment
 // is pinned along it too), walls as segments; x along the corridor.
 std::vector<test::Segment> corridor() {
