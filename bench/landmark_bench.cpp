@@ -68,7 +68,7 @@ void BM_HomeBaseLocalization(benchmark::State& state) {
 void BM_RivalPlacement(benchmark::State& state) {
   // The building as a shared map, and a look from a room's corner: 300 points on the walls
   // within 3.5 m, as CooperationConfig's check uses (search 2 m, shifts of at least 0.5 m,
-  // turns up to 4 degrees).
+  // turns up to the benchmark's argument in degrees: 12, the default, and 4, session 12's).
   const GridU8 g = building();
   std::vector<int16_t> log_odds(g.limits.width * g.limits.height);
   std::vector<Eigen::Vector2d> walls;
@@ -86,9 +86,10 @@ void BM_RivalPlacement(benchmark::State& state) {
   std::vector<Eigen::Vector2d> look;
   for (size_t i = 0; i < walls.size(); i += std::max<size_t>(1, walls.size() / 300))
     look.push_back(walls[i]);
-  const RivalPlacement r = rivalPlacement(aligner, look, pivot, 2.0, 0.5, 4.0 * M_PI / 180.0);
+  const double turn = static_cast<double>(state.range(0)) * M_PI / 180.0;
+  const RivalPlacement r = rivalPlacement(aligner, look, pivot, 2.0, 0.5, turn);
   for (auto _ : state) {
-    const RivalPlacement again = rivalPlacement(aligner, look, pivot, 2.0, 0.5, 4.0 * M_PI / 180.0);
+    const RivalPlacement again = rivalPlacement(aligner, look, pivot, 2.0, 0.5, turn);
     benchmark::DoNotOptimize(again);
   }
   state.counters["points"] = static_cast<double>(look.size());
@@ -97,7 +98,7 @@ void BM_RivalPlacement(benchmark::State& state) {
 }
 
 BENCHMARK(BM_CornerSearch40mGrid)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_RivalPlacement)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_RivalPlacement)->Arg(12)->Arg(4)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_HomeBaseLocalization)->Unit(benchmark::kMillisecond);
 
 }  // namespace
