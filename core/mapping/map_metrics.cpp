@@ -48,7 +48,8 @@ MapMetrics computeMapMetrics(const OccupancyGrid& map, const GridU8& truth,
   int wall_hits = 0, false_occ = 0, covered = 0;
   std::array<int, MapMetrics::kDistanceBands> false_by_band{};
   const GridU8 reach = reachableFree(truth, start, drivable);
-  // Chessboard distance (cells) of every cell to the nearest true obstacle.
+  // Chessboard distance (cells) of every cell to the nearest true obstacle: 1 for the
+  // 8-neighbourhood of one.
   cv::Mat not_obstacle(lim.height, lim.width, CV_8U), to_obstacle;
   for (int y = 0; y < lim.height; ++y)
     for (int x = 0; x < lim.width; ++x) not_obstacle.at<uint8_t>(y, x) = truth.at(x, y) ? 0 : 255;
@@ -75,11 +76,12 @@ MapMetrics computeMapMetrics(const OccupancyGrid& map, const GridU8& truth,
       }
       if (!map.seen(x, y) || (drivable && !drivable->at(x, y))) continue;
       // More than one cell from any true obstacle: none in the 8-neighbourhood.
-      if (neighbourhood(x, y, [&](int a, int b) { return truth.at(a, b) != 0; })) continue;
+      const float to_true = to_obstacle.at<float>(y, x);
+      if (to_true < 1.5f) continue;
       ++m.clear_observed_cells;
       if (map.state(x, y) == CellState::kOccupied) {
         ++false_occ;
-        ++false_by_band[band(to_obstacle.at<float>(y, x))];
+        ++false_by_band[band(to_true)];
       }
     }
   }
