@@ -82,6 +82,11 @@ void addMissionSettingOptions(CLI::App& cmd, RunOptions& run) {
           "With --explore: m either side of the path driven kept free in planning (0: the "
           "robot's radius) [default: the world's, else 0]")
       ->check(CLI::Range(0.0, 1.0));
+  setting(cmd, "--recent-hits", run.recent_hits_s,
+          "With --explore: seconds; what the cameras saw that long ago or less (within 2 m) "
+          "blocks the robot's planning whatever its map holds there (0: off) [default: the "
+          "world's, else 0]")
+      ->check(CLI::Range(0.0, 600.0));
   setting(cmd, "--margin", run.planning_margin,
           "With --explore: metres kept clear around the robot's body in planning, room for "
           "the estimate's drift [default: the world's, else 0.05]")

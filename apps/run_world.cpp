@@ -120,7 +120,7 @@ void writeOutputs(const RunOptions& opt, const sim::World& world, const RunResul
     j.value("fringe_clearance", m->fringe_clearance).value("goal_clearance", m->goal_clearance);
     j.value("retry_frontiers", m->retry_frontiers).value("floor_edge_depth", m->floor_edge_depth);
     j.value("shaped_closures", m->shaped_closures).value("bump_away", m->bump_away);
-    j.value("visited_radius", m->visited_radius);
+    j.value("visited_radius", m->visited_radius).value("recent_hits_s", m->recent_hits_s);
     j.value("calibrate_distance_scale", m->calibrate_distance_scale);
     j.value("passage_width", m->passage_width).value("planning_margin", m->planning_margin);
     j.value("preferred_margin", m->preferred_margin).value("closures", m->closures);
@@ -293,6 +293,7 @@ RunResult runWorld(const RunOptions& opt) {
           pick(opt.retry_frontiers, we.retry_frontiers, mission.retry_frontiers);
       mission.bump_away = pick(opt.bump_away, we.bump_away, mission.bump_away);
       mission.visited_radius = pick(opt.visited_radius, we.visited_radius, mission.visited_radius);
+      mission.recent_hits_s = pick(opt.recent_hits_s, we.recent_hits_s, mission.recent_hits_s);
       mission.passage_width = pick(opt.passage_width, we.passage_width, mission.passage_width);
       mission.planner.preferred_margin =
           pick(opt.preferred_margin, we.preferred_margin, mission.planner.preferred_margin);
@@ -310,6 +311,7 @@ RunResult runWorld(const RunOptions& opt) {
           pick(opt.shaped_closures, we.shaped_closures, opt.cooperation.closure_shape),
           mission.bump_away,
           mission.visited_radius,
+          mission.recent_hits_s,
           pick(opt.calibrate_distance_scale, we.calibrate_distance_scale, true),
           mission.passage_width,
           mission.planning.margin,

@@ -55,6 +55,7 @@ struct RunOptions {
   std::optional<bool> shaped_closures;          // CooperationConfig::closure_shape
   std::optional<bool> bump_away;                // MissionConfig::bump_away
   std::optional<double> visited_radius;         // m: MissionConfig::visited_radius (0: radius)
+  std::optional<double> recent_hits_s;          // s: MissionConfig::recent_hits_s (0: off)
   std::optional<double> passage_width;          // m: MissionConfig::passage_width (0: off)
   double sortie_budget_s = 400.0;               // s: a robot stuck (wheels slipping) goes home too
   int max_sorties = 12;
@@ -189,6 +190,7 @@ struct RunResult {
     bool shaped_closures = false;
     bool bump_away = false;
     double visited_radius = 0.0;
+    double recent_hits_s = 0.0;
     bool calibrate_distance_scale = true;
     double passage_width = 0.0;
     double planning_margin = 0.0;

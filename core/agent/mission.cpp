@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <unordered_map>
+#include <utility>
 
 namespace coopmap {
 
@@ -60,6 +62,9 @@ void MissionConfig::validate() const {
   require("slow_distance", slow_distance >= 0.0, "a number >= 0 (0: off)", slow_distance);
   require("slow_fraction", slow_fraction > 0.0 && slow_fraction <= 1.0, "a number in (0, 1]",
           slow_fraction);
+  require("recent_hits_s", recent_hits_s >= 0.0, "a number >= 0 (0: off)", recent_hits_s);
+  positive("recent_hits_range", recent_hits_range);
+  require("recent_hits_support", recent_hits_support >= 1, "at least 1", recent_hits_support);
   require("first_budget_m", first_budget_m >= 0.0, "a number >= 0 (0: budget_m)", first_budget_m);
   require("bump_width", bump_width >= 0.0, "a number >= 0", bump_width);
   require("passage_width", passage_width >= 0.0, "a number >= 0 (0: off)", passage_width);
@@ -135,7 +140,8 @@ bool MissionAgent::obstacleAhead(const RadialMap& scan) const {
   return false;
 }
 
-PlanningMap MissionAgent::planningMap(const OccupancyGrid& map, bool allow_unknown) const {
+PlanningMap MissionAgent::planningMap(const OccupancyGrid& map, bool allow_unknown,
+                                      bool recent) const {
   // Where the robot has been is free though the cameras never saw it (they never see beneath
   // the robot), or saw a weak obstacle there (a stereo mismatch). Not where they saw an
   // obstacle again and again: the estimate drifts, so "where it has been" can lie on a table
@@ -159,6 +165,24 @@ PlanningMap MissionAgent::planningMap(const OccupancyGrid& map, bool allow_unkno
           seen == CellState::kOccupied && map.logOdds(ix, iy) >= config_.firm_log_odds;
       states.at(ix, iy) = visited && !firm ? CellState::kFree : seen;
     }
+  // What the cameras saw a moment ago, where the robot's estimate put it then.
+  const double keep_out =
+      config_.planning.robot_radius + config_.planning.margin + 2.0 * lim.resolution;
+  if (recent) {
+    // cell -> (the last frame that saw it, how many frames did)
+    std::unordered_map<size_t, std::pair<int, int>> seen_by;
+    for (const RecentHit& h : recent_) {
+      const int ix = lim.cellX(h.p.x()), iy = lim.cellY(h.p.y());
+      if (!lim.contains(ix, iy)) continue;
+      const double d = (lim.cellCenter(ix, iy) - last_pose_.translation()).norm();
+      if (d <= keep_out || d > config_.recent_hits_range) continue;
+      auto& [frame, frames] = seen_by[lim.index(ix, iy)];
+      if (frame != h.frame) {
+        frame = h.frame;
+        if (++frames == config_.recent_hits_support) states.at(ix, iy) = CellState::kOccupied;
+      }
+    }
+  }
   // What the bumpers touched this sortie, and teammates while they stand where they are.
   for (const Eigen::Vector2d& p : bumps_)
     fillDisc(states, p, config_.bump_radius, CellState::kOccupied);
@@ -167,6 +191,38 @@ PlanningMap MissionAgent::planningMap(const OccupancyGrid& map, bool allow_unkno
   PlanningMapConfig c = config_.planning;
   c.allow_unknown = allow_unknown;
   return PlanningMap(states, c);
+}
+
+size_t MissionAgent::rememberHits(double now, const Pose2& odometry, const RadialMap& scan) {
+  const double since = now - config_.recent_hits_s;
+  size_t old = 0;
+  while (old < recent_.size() && recent_[old].t < since) ++old;
+  recent_.erase(recent_.begin(), recent_.begin() + static_cast<std::ptrdiff_t>(old));
+  const size_t before = recent_.size();
+  ++recent_frames_;
+  for (const RadialReading& r : scan.readings)
+    if (r.kind == RadialKind::kHit && r.range <= config_.recent_hits_range)
+      recent_.push_back(
+          {now, recent_frames_,
+           odometry * (scan.sensor_origin +
+                       r.range * Eigen::Vector2d(std::cos(r.bearing), std::sin(r.bearing)))});
+  return recent_.size() - before;
+}
+
+bool MissionAgent::freshHitOnWay(const Pose2& pose, size_t fresh) const {
+  if (fresh == 0) return false;
+  const std::vector<Eigen::Vector2d> way = wayAhead(pose);
+  // The planning map's clearance, and a cell's diagonal for where in its cell a hit lies.
+  const double reach = config_.planning.robot_radius + config_.planning.margin + 0.1;
+  for (size_t k = recent_.size() - fresh; k < recent_.size(); ++k)
+    for (size_t i = 0; i + 1 < way.size(); ++i) {
+      const Eigen::Vector2d d = way[i + 1] - way[i];
+      const double t = d.squaredNorm() > 0.0
+                           ? std::clamp((recent_[k].p - way[i]).dot(d) / d.squaredNorm(), 0.0, 1.0)
+                           : 0.0;
+      if ((way[i] + t * d - recent_[k].p).norm() < reach) return true;
+    }
+  return false;
 }
 
 void MissionAgent::markVisited(const OccupancyGrid& map, const Pose2& odometry) {
@@ -220,7 +276,9 @@ std::optional<Eigen::Vector2d> MissionAgent::nearestReachable(const PlanningMap&
 }
 
 void MissionAgent::chooseGoal(double now, const Pose2& odometry, const OccupancyGrid& map) {
-  const PlanningMap planning = planningMap(map, false);
+  // Goals by the map: what was just seen (a person, a teammate passing) is no reason to end
+  // the exploration or give a frontier up. The path to the goal goes round it, if it can.
+  const PlanningMap planning = planningMap(map, false, false);
   if (!planning.freeAt(odometry.translation())) {
     // Something seen too close (a stereo mismatch, a person passing) leaves the robot on a
     // cell the planner will not start from: step to the nearest free one first.
@@ -266,6 +324,13 @@ void MissionAgent::chooseGoal(double now, const Pose2& odometry, const Occupancy
     return;
   }
   path_ = step.plan.path;
+  if (!recent_.empty()) {
+    const PlanningMap seen_now = planningMap(map, false);
+    if (!pathStillValid(path_, seen_now)) {
+      const PlanResult around = planner_.plan(seen_now, odometry, step.frontier.goal);
+      if (around.solved()) path_ = around.path;
+    }
+  }
   goal_ = step.frontier.goal;
   has_goal_ = true;
   goal_deadline_ =
@@ -326,7 +391,8 @@ void MissionAgent::continueAfterFix(double now) {
   sortie_start_ = now;
   travelled_ = 0.0;
   sortie_bumps_ = 0;
-  bumps_.clear();              // the estimate's frame changes with the fix
+  bumps_.clear();  // the estimate's frame changes with the fix
+  recent_.clear();
   claims_.clear();             // what teammates posted is in the imported map now
   explorer_.clearBlacklist();  // the goals failed in the old frame, on the old map
   pose_jumped_ = true;
@@ -371,6 +437,8 @@ MotionCommand MissionAgent::update(double now, const Pose2& odometry, const Occu
   pose_jumped_ = false;
   last_pose_ = odometry;
   markVisited(map, odometry);
+  const size_t fresh =
+      latest && config_.recent_hits_s > 0.0 ? rememberHits(now, odometry, *latest) : 0;
   if (latest) {
     nearest_ahead_ = 1e9;
     for (const RadialReading& r : latest->readings)
@@ -529,8 +597,10 @@ MotionCommand MissionAgent::update(double now, const Pose2& odometry, const Occu
         }
         follower_.reset();
       }
+      // Something just seen on the way: check the path now, not at the next period.
+      const bool seen_on_way = follower_ && freshHitOnWay(odometry, fresh);
       if (follower_ && has_goal_ && path_.waypoints.size() >= 2 &&
-          now - last_check_ >= config_.replan_period_s) {
+          (seen_on_way || now - last_check_ >= config_.replan_period_s)) {
         // The map grew under the path: go on if it is still free, else plan anew.
         last_check_ = now;
         const PlanningMap planning = planningMap(map, false);
@@ -541,6 +611,15 @@ MotionCommand MissionAgent::update(double now, const Pose2& odometry, const Occu
             path_ = r.result.path;
             startRoute(routeOf(path_.waypoints), now);
             last_event_ = "path blocked: replanned";
+          } else if (!recent_.empty() && r.result.status == PlanStatus::kGoalInvalid &&
+                     planningMap(map, false, false).freeAt(goal_)) {
+            // The goal stands by what the cameras have just seen: its frontier is seen.
+            if (config_.retry_frontiers)
+              explorer_.markReached(goal_);
+            else
+              explorer_.blacklist(goal_);
+            follower_.reset();
+            last_event_ = "goal by what was just seen: taken as seen";
           } else {
             ++goals_failed_;
             explorer_.blacklist(goal_);
@@ -565,6 +644,12 @@ MotionCommand MissionAgent::update(double now, const Pose2& odometry, const Occu
       if (latest && driving && obstacleAhead(*latest)) {
         ++safety_stops_;
         goHome(now, odometry, map);  // around whatever is in the way
+        return last_command_ = MotionCommand::stop();
+      }
+      if (freshHitOnWay(odometry, fresh) &&
+          firstBlockedSegment(wayAhead(odometry), planningMap(map, false))) {
+        last_event_ = "way home blocked: replanned";
+        goHome(now, odometry, map);
         return last_command_ = MotionCommand::stop();
       }
       if (!follower_->done()) return last_command_ = slowed(follower_->update(odometry, now));

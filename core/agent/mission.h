@@ -51,6 +51,20 @@ struct MissionConfig {
   // the robot crossed the whole band between that depth and safety_distance unseen). 0: off.
   double slow_distance = 0.0;
   double slow_fraction = 0.35;
+  // s: what the cameras saw in the last this many seconds (hits within recent_hits_range)
+  // blocks the robot's planning, whatever its map holds there. Its map is mostly the shared
+  // map, placed by corrected traverses that can be 0.2 m off across a corridor, and the cells
+  // it holds firmly free take many hits to turn; a hit seen a moment ago is where it is
+  // relative to the robot, to the drift of a few seconds. It matters where the cameras stop
+  // seeing what they saw farther off: a textureless wall is seen only by where the floor
+  // ends, and the floor only from 1.2 m. 0: off.
+  double recent_hits_s = 0.0;
+  // m: only hits this near the cameras are remembered, and only while this near the robot
+  // (a local layer: the frontiers, and the goals, are chosen by the map alone).
+  double recent_hits_range = 2.0;
+  // Frames that must have seen a cell (within recent_hits_s): a stereo mismatch is seldom
+  // seen twice in the same place, a wall is.
+  int recent_hits_support = 2;
   double look_wait_s = 3.0;          // s facing the home base before the slow turn
   double look_turn_rate = 0.26;      // rad/s of the turns in place at home
   double goal_timeout_factor = 4.0;  // a goal not reached in this many times its path's
@@ -172,8 +186,21 @@ class MissionAgent {
 
  private:
   void startRoute(std::vector<Waypoint> route, double now);
-  PlanningMap planningMap(const OccupancyGrid& map, bool allow_unknown) const;
+  // With `recent`, what the cameras just saw blocks too (recent_hits_s), but for what is so
+  // near the robot that it could not start (that is the safety stop's and the bumpers').
+  PlanningMap planningMap(const OccupancyGrid& map, bool allow_unknown, bool recent = true) const;
   std::vector<Eigen::Vector2d> bumps_;  // where the bumpers touched something this sortie
+  struct RecentHit {
+    double t;
+    int frame;          // counts the scans remembered
+    Eigen::Vector2d p;  // map frame (the estimate's)
+  };
+  int recent_frames_ = 0;
+  std::vector<RecentHit> recent_;  // hits of the last recent_hits_s, oldest first
+  // Adds the scan's hits (dropping those too old); returns how many it added.
+  size_t rememberHits(double now, const Pose2& odometry, const RadialMap& scan);
+  // One of the last `fresh` recent hits lies within the planning clearance of the way ahead.
+  bool freshHitOnWay(const Pose2& pose, size_t fresh) const;
   void markVisited(const OccupancyGrid& map, const Pose2& odometry);
   bool obstacleAhead(const RadialMap& scan) const;
   // The command with its forward speed capped by the nearest obstacle ahead (slow_distance).

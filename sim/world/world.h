@@ -192,6 +192,7 @@ struct World {
     std::optional<bool> shaped_closures;           // CooperationConfig::closure_shape
     std::optional<bool> bump_away;                 // MissionConfig::bump_away
     std::optional<double> visited_radius;          // m: MissionConfig::visited_radius
+    std::optional<double> recent_hits_s;           // s: MissionConfig::recent_hits_s
     std::optional<bool> calibrate_distance_scale;  // OdometryCalibration's distance scale
     std::optional<double> passage_width;           // m: MissionConfig::passage_width
     std::optional<double> planning_margin;   // m: PlanningMapConfig::margin of exploring robots

@@ -220,7 +220,7 @@ World parseWorld(const std::string& text, const std::string& file) {
                           "slow_distance", "fringe_clearance", "goal_clearance", "retry_frontiers",
                           "floor_edge_depth", "shaped_closures", "bump_away", "visited_radius",
                           "calibrate_distance_scale", "passage_width", "planning_margin",
-                          "preferred_margin", "closures", "post_gate_m"});
+                          "preferred_margin", "closures", "post_gate_m", "recent_hits_s"});
       World::Exploration& e = w.exploration;
       auto metres = [&](const char* key, double lo, double hi, const char* what,
                         std::optional<double>& out) {
@@ -238,6 +238,7 @@ World parseWorld(const std::string& text, const std::string& file) {
       metres("planning_margin", 0.0, 1.0, "metres in [0, 1]", e.planning_margin);
       metres("preferred_margin", 0.0, 2.0, "metres in [0, 2] (0: off)", e.preferred_margin);
       metres("post_gate_m", 0.0, 2.0, "metres in [0, 2] (0: off)", e.post_gate_m);
+      metres("recent_hits_s", 0.0, 600.0, "seconds in [0, 600] (0: off)", e.recent_hits_s);
       metres("visited_radius", 0.0, 1.0, "metres in [0, 1] (0: the robot's radius)",
              e.visited_radius);
       if (mission->has("retry_frontiers"))

@@ -66,7 +66,9 @@ TEST(ExploreScenarioTest, TheBuildingsMissionSettingsApplyUnlessTheCommandLineSa
   EXPECT_EQ(r.mission_settings->preferred_margin, 0.0);
   EXPECT_EQ(r.mission_settings->closures, "shared");
   EXPECT_EQ(r.mission_settings->post_gate_m, 0.2);
+  EXPECT_EQ(r.mission_settings->recent_hits_s, 0.0);
   o.safety_distance = 0.6;
+  o.recent_hits_s = 5.0;
   o.passage_width = 0.0;
   o.calibrate_distance_scale = true;
   o.bump_away = false;
@@ -86,6 +88,7 @@ TEST(ExploreScenarioTest, TheBuildingsMissionSettingsApplyUnlessTheCommandLineSa
   EXPECT_EQ(r.mission_settings->visited_radius, 0.09);
   EXPECT_TRUE(r.mission_settings->calibrate_distance_scale);
   EXPECT_EQ(r.mission_settings->passage_width, 0.0);
+  EXPECT_EQ(r.mission_settings->recent_hits_s, 5.0);
   // The lab says nothing: the defaults.
   o = RunOptions{};
   o.world_file = std::string(COOPMAP_SOURCE_DIR) + "/worlds/lab.yaml";

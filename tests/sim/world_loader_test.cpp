@@ -89,7 +89,8 @@ TEST(WorldLoaderTest, MissionSettingsOfABuildingAreReadAndChecked) {
       "slow_distance: 1, fringe_clearance: 0.3, goal_clearance: 0.4, retry_frontiers: true, "
       "floor_edge_depth: 1.5, shaped_closures: true, bump_away: true, visited_radius: 0.09, "
       "calibrate_distance_scale: false, passage_width: 1.2, sortie_budget_m: 30, "
-      "planning_margin: 0.2, preferred_margin: 0.3, closures: both, post_gate_m: 0.25}\n" +
+      "planning_margin: 0.2, preferred_margin: 0.3, closures: both, post_gate_m: 0.25, "
+      "recent_hits_s: 8}\n" +
           minimal(),
       "w.yaml");
   EXPECT_EQ(w.mission, "explore");
@@ -110,6 +111,7 @@ TEST(WorldLoaderTest, MissionSettingsOfABuildingAreReadAndChecked) {
   EXPECT_EQ(w.exploration.preferred_margin, 0.3);
   EXPECT_EQ(w.exploration.closures, "both");
   EXPECT_EQ(w.exploration.post_gate_m, 0.25);
+  EXPECT_EQ(w.exploration.recent_hits_s, 8.0);
   EXPECT_FALSE(parseWorld(minimal(), "w.yaml").exploration.safety_distance.has_value());
   const World building = loadWorld(kSrc + "/worlds/lab_corridor.yaml");
   EXPECT_TRUE(building.exploration.retry_frontiers.value_or(false));
@@ -120,6 +122,10 @@ TEST(WorldLoaderTest, MissionSettingsOfABuildingAreReadAndChecked) {
   e = errorOf("mission: {mode: explore, visited_radius: 2}\n" + minimal());
   EXPECT_NE(e.find("mission.visited_radius: expected metres in [0, 1] (0: the robot's radius), "
                    "got '2'"),
+            std::string::npos)
+      << e;
+  e = errorOf("mission: {mode: explore, recent_hits_s: -3}\n" + minimal());
+  EXPECT_NE(e.find("mission.recent_hits_s: expected seconds in [0, 600] (0: off), got '-3'"),
             std::string::npos)
       << e;
   e = errorOf("mission: {mode: explore, bump_away: sometimes}\n" + minimal());
