@@ -3,24 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
-#include <unordered_map>
-#include <utility>
 
 namespace coopmap {
 
 namespace {
-
-// Sets every cell of `grid` whose centre lies within `radius` of `p` to `value`.
-template <typename T>
-void fillDisc(Grid<T>& grid, const Eigen::Vector2d& p, double radius, T value) {
-  const MapLimits& lim = grid.limits;
-  const int n = static_cast<int>(std::ceil(radius / lim.resolution));
-  const int cx = lim.cellX(p.x()), cy = lim.cellY(p.y());
-  for (int iy = cy - n; iy <= cy + n; ++iy)
-    for (int ix = cx - n; ix <= cx + n; ++ix)
-      if (lim.contains(ix, iy) && (lim.cellCenter(ix, iy) - p).norm() <= radius)
-        grid.at(ix, iy) = value;
-}
 
 std::vector<Waypoint> routeOf(const std::vector<Eigen::Vector2d>& waypoints) {
   std::vector<Waypoint> route;
@@ -140,139 +126,14 @@ bool MissionAgent::obstacleAhead(const RadialMap& scan) const {
   return false;
 }
 
-PlanningMap MissionAgent::planningMap(const OccupancyGrid& map, bool allow_unknown,
-                                      bool recent) const {
-  // Where the robot has been is free though the cameras never saw it (they never see beneath
-  // the robot), or saw a weak obstacle there (a stereo mismatch). Not where they saw an
-  // obstacle again and again: the estimate drifts, so "where it has been" can lie on a table
-  // it saw a minute ago.
-  // With a narrow visited strip, the whole footprint where the robot stands now (the planner
-  // starts there).
-  const MapLimits& lim = map.limits();
-  const double footprint =
-      config_.visited_radius > 0.0 && config_.visited_radius < config_.planning.robot_radius
-          ? config_.planning.robot_radius
-          : 0.0;
-  Grid<CellState> states(lim, CellState::kUnknown);
-  for (int iy = 0; iy < lim.height; ++iy)
-    for (int ix = 0; ix < lim.width; ++ix) {
-      const CellState seen = map.state(ix, iy);
-      const bool visited =
-          (!visited_.cells.empty() && visited_.at(ix, iy)) ||
-          (footprint > 0.0 && (lim.cellCenter(ix, iy) - last_pose_.translation()).squaredNorm() <=
-                                  footprint * footprint);
-      const bool firm =
-          seen == CellState::kOccupied && map.logOdds(ix, iy) >= config_.firm_log_odds;
-      states.at(ix, iy) = visited && !firm ? CellState::kFree : seen;
-    }
-  // What the cameras saw a moment ago, where the robot's estimate put it then.
-  const double keep_out =
-      config_.planning.robot_radius + config_.planning.margin + 2.0 * lim.resolution;
-  if (recent) {
-    // cell -> (the last frame that saw it, how many frames did)
-    std::unordered_map<size_t, std::pair<int, int>> seen_by;
-    for (const RecentHit& h : recent_) {
-      const int ix = lim.cellX(h.p.x()), iy = lim.cellY(h.p.y());
-      if (!lim.contains(ix, iy)) continue;
-      const double d = (lim.cellCenter(ix, iy) - last_pose_.translation()).norm();
-      if (d <= keep_out || d > config_.recent_hits_range) continue;
-      auto& [frame, frames] = seen_by[lim.index(ix, iy)];
-      if (frame != h.frame) {
-        frame = h.frame;
-        if (++frames == config_.recent_hits_support) states.at(ix, iy) = CellState::kOccupied;
-      }
-    }
-  }
-  // What the bumpers touched this sortie, and teammates while they stand where they are.
-  for (const Eigen::Vector2d& p : bumps_)
-    fillDisc(states, p, config_.bump_radius, CellState::kOccupied);
-  for (const Eigen::Vector2d& p : teammates_)
-    fillDisc(states, p, config_.team_radius, CellState::kOccupied);
-  PlanningMapConfig c = config_.planning;
-  c.allow_unknown = allow_unknown;
-  return PlanningMap(states, c);
-}
-
-size_t MissionAgent::rememberHits(double now, const Pose2& odometry, const RadialMap& scan) {
-  const double since = now - config_.recent_hits_s;
-  size_t old = 0;
-  while (old < recent_.size() && recent_[old].t < since) ++old;
-  recent_.erase(recent_.begin(), recent_.begin() + static_cast<std::ptrdiff_t>(old));
-  const size_t before = recent_.size();
-  ++recent_frames_;
-  for (const RadialReading& r : scan.readings)
-    if (r.kind == RadialKind::kHit && r.range <= config_.recent_hits_range)
-      recent_.push_back(
-          {now, recent_frames_,
-           odometry * (scan.sensor_origin +
-                       r.range * Eigen::Vector2d(std::cos(r.bearing), std::sin(r.bearing)))});
-  return recent_.size() - before;
-}
-
-bool MissionAgent::freshHitOnWay(const Pose2& pose, size_t fresh) const {
-  if (fresh == 0) return false;
-  const std::vector<Eigen::Vector2d> way = wayAhead(pose);
-  // The planning map's clearance, and a cell's diagonal for where in its cell a hit lies.
-  const double reach = config_.planning.robot_radius + config_.planning.margin + 0.1;
-  for (size_t k = recent_.size() - fresh; k < recent_.size(); ++k)
-    for (size_t i = 0; i + 1 < way.size(); ++i) {
-      const Eigen::Vector2d d = way[i + 1] - way[i];
-      const double t = d.squaredNorm() > 0.0
-                           ? std::clamp((recent_[k].p - way[i]).dot(d) / d.squaredNorm(), 0.0, 1.0)
-                           : 0.0;
-      if ((way[i] + t * d - recent_[k].p).norm() < reach) return true;
-    }
-  return false;
-}
-
-void MissionAgent::markVisited(const OccupancyGrid& map, const Pose2& odometry) {
-  const MapLimits& lim = map.limits();
-  if (visited_.cells.empty()) visited_ = GridU8(lim, 0);
-  const double r =
-      config_.visited_radius > 0.0 ? config_.visited_radius : config_.planning.robot_radius;
-  fillDisc(visited_, odometry.translation(), r, uint8_t{1});
-}
-
-std::optional<Eigen::Vector2d> MissionAgent::nearestFreeCell(const PlanningMap& planning,
-                                                             const Pose2& odometry) const {
-  const MapLimits& lim = planning.limits();
-  const int n = static_cast<int>(std::ceil(config_.escape_radius / lim.resolution));
-  const int cx = lim.cellX(odometry.x), cy = lim.cellY(odometry.y);
-  double best = 1e300;
-  std::optional<Eigen::Vector2d> to;
-  for (int iy = cy - n; iy <= cy + n; ++iy)
-    for (int ix = cx - n; ix <= cx + n; ++ix) {
-      const Eigen::Vector2d c = lim.cellCenter(ix, iy);
-      const double d = (c - odometry.translation()).norm();
-      if (d < best && d <= config_.escape_radius && planning.free(ix, iy) &&
-          planning.segmentFree(c, c)) {
-        best = d;
-        to = c;
-      }
-    }
-  return to;
-}
-
-std::optional<Eigen::Vector2d> MissionAgent::nearestReachable(const PlanningMap& planning,
-                                                              const Pose2& from,
-                                                              const Eigen::Vector2d& to) const {
-  const MapLimits& lim = planning.limits();
-  const int region = planning.region(lim.cellX(from.x), lim.cellY(from.y));
-  if (region == 0) return std::nullopt;
-  const double start = (to - from.translation()).norm();
-  double best = start - 0.5;  // worth going only if it is at least 0.5 m nearer home
-  std::optional<Eigen::Vector2d> out;
-  for (int iy = 0; iy < lim.height; ++iy)
-    for (int ix = 0; ix < lim.width; ++ix) {
-      if (planning.region(ix, iy) != region) continue;
-      const Eigen::Vector2d c = lim.cellCenter(ix, iy);
-      const double d = (c - to).norm();
-      if (d < best) {
-        best = d;
-        out = c;
-      }
-    }
-  return out;
+void MissionAgent::goalSeen() {
+  // The frontier is seen from there or never will be. With retry_frontiers, reached goals
+  // are remembered for good (what the robot did not see from there it will not); else the
+  // goal is blacklisted for the sortie like a failed one.
+  if (config_.retry_frontiers)
+    explorer_.markReached(goal_);
+  else
+    explorer_.blacklist(goal_);
 }
 
 void MissionAgent::chooseGoal(double now, const Pose2& odometry, const OccupancyGrid& map) {
@@ -589,12 +450,7 @@ MotionCommand MissionAgent::update(double now, const Pose2& odometry, const Occu
       if (follower_ && follower_->done()) {
         // Reached: the frontier is seen from here or never will be; do not come back.
         ++goals_reached_;
-        if (has_goal_) {
-          if (config_.retry_frontiers)
-            explorer_.markReached(goal_);
-          else
-            explorer_.blacklist(goal_);
-        }
+        if (has_goal_) goalSeen();
         follower_.reset();
       }
       // Something just seen on the way: check the path now, not at the next period.
@@ -614,10 +470,7 @@ MotionCommand MissionAgent::update(double now, const Pose2& odometry, const Occu
           } else if (!recent_.empty() && r.result.status == PlanStatus::kGoalInvalid &&
                      planningMap(map, false, false).freeAt(goal_)) {
             // The goal stands by what the cameras have just seen: its frontier is seen.
-            if (config_.retry_frontiers)
-              explorer_.markReached(goal_);
-            else
-              explorer_.blacklist(goal_);
+            goalSeen();
             follower_.reset();
             last_event_ = "goal by what was just seen: taken as seen";
           } else {

@@ -201,6 +201,11 @@ class MissionAgent {
   size_t rememberHits(double now, const Pose2& odometry, const RadialMap& scan);
   // One of the last `fresh` recent hits lies within the planning clearance of the way ahead.
   bool freshHitOnWay(const Pose2& pose, size_t fresh) const;
+  // `p` lies within `within` (m) of the polyline `way`.
+  static bool nearWay(const std::vector<Eigen::Vector2d>& way, const Eigen::Vector2d& p,
+                      double within);
+  // The goal's frontier counts as seen: not a goal again (see retry_frontiers).
+  void goalSeen();
   void markVisited(const OccupancyGrid& map, const Pose2& odometry);
   bool obstacleAhead(const RadialMap& scan) const;
   // The command with its forward speed capped by the nearest obstacle ahead (slow_distance).

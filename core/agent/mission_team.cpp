@@ -88,20 +88,11 @@ bool MissionAgent::teammateAhead(const Pose2& pose) const {
   // A teammate stops this robot only where the way passes it closer than the planning map's
   // disc allows: once planned around a teammate standing still, the robot drives on.
   const double clear = 0.9 * (config_.team_radius + config_.planning.robot_radius);
-  auto nearWay = [&](const Eigen::Vector2d& p) {
-    for (size_t k = 0; k + 1 < way.size(); ++k) {
-      const Eigen::Vector2d a = way[k], ab = way[k + 1] - a;
-      const double t =
-          ab.squaredNorm() > 0.0 ? std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
-      if ((a + t * ab - p).norm() < clear) return true;
-    }
-    return false;
-  };
   for (const Eigen::Vector2d& p : teammates_) {
     const Eigen::Vector2d to = p - pose.translation();
     if (to.norm() < config_.team_distance &&
         std::abs(wrapAngle(std::atan2(to.y(), to.x()) - pose.theta)) < config_.team_half_angle &&
-        (to.norm() < config_.team_close || nearWay(p)))
+        (to.norm() < config_.team_close || nearWay(way, p, clear)))
       return true;
   }
   return false;
