@@ -101,6 +101,11 @@ void addMissionSettingOptions(CLI::App& cmd, RunOptions& run) {
           "move farther than this is not posted (it was misplaced; 0: off) [default: the "
           "world's, else 0]")
       ->check(CLI::Range(0.0, 2.0));
+  setting(cmd, "--manhattan", run.manhattan_sigma_deg,
+          "With --explore: degrees; in a building whose walls run along the map's axes, each "
+          "stretch of a sortie whose walls look turned from them gives its correction a "
+          "heading of this 1-sigma (0: off) [default: the world's, else 0]")
+      ->check(CLI::Range(0.0, 10.0));
   onOff(cmd, "--scale-calibration",
         "With --explore: the online odometry calibration includes the distance scale the "
         "sorties' loop closures find [default: the world's, else on]",

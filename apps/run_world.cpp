@@ -124,7 +124,7 @@ void writeOutputs(const RunOptions& opt, const sim::World& world, const RunResul
     j.value("calibrate_distance_scale", m->calibrate_distance_scale);
     j.value("passage_width", m->passage_width).value("planning_margin", m->planning_margin);
     j.value("preferred_margin", m->preferred_margin).value("closures", m->closures);
-    j.value("post_gate_m", m->post_gate_m);
+    j.value("post_gate_m", m->post_gate_m).value("manhattan_sigma_deg", m->manhattan_sigma_deg);
     j.endObject();
   }
   j.value("sim_time_s", result.sim_time_s).value("wall_time_s", result.wall_time_s);
@@ -317,7 +317,9 @@ RunResult runWorld(const RunOptions& opt) {
           mission.planning.margin,
           mission.planner.preferred_margin,
           closures,
-          pick(opt.post_gate_m, we.post_gate_m, opt.cooperation.post_gate_m)};
+          pick(opt.post_gate_m, we.post_gate_m, opt.cooperation.post_gate_m),
+          pick(opt.manhattan_sigma_deg, we.manhattan_sigma_deg,
+               opt.cooperation.manhattan_sigma_rad * 180.0 / M_PI)};
       mission.max_sorties = cooperative ? opt.max_sorties : 1;
       r.mission = std::make_unique<MissionAgent>(spec.start, mission);
       if (cooperative) {
@@ -325,6 +327,7 @@ RunResult runWorld(const RunOptions& opt) {
         cooperation.closure_shape = settings->shaped_closures;
         cooperation.setClosureKinds(closures);  // checked above (options) or on loading
         cooperation.post_gate_m = settings->post_gate_m;
+        cooperation.manhattan_sigma_rad = settings->manhattan_sigma_deg * M_PI / 180.0;
         r.coop = std::make_unique<HomeBaseCooperation>(
             spec.name, nominalHomeBase(world), world.home_base.arm_length, &*live, cooperation);
         r.calibrate = opt.calibrate_odometry;

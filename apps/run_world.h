@@ -91,6 +91,10 @@ struct RunOptions {
   // m: stretches of a corrected sortie the shared map would move farther than this are not
   // posted (CooperationConfig::post_gate_m). Unset: the world's mission setting, else 0 (off).
   std::optional<double> post_gate_m;
+  // deg: 1-sigma of the headings the walls give the sorties' corrections, in a building whose
+  // walls run along the map frame's axes (CooperationConfig::manhattan_sigma_rad). Unset: the
+  // world's mission setting, else 0 (off).
+  std::optional<double> manhattan_sigma_deg;
   // m: returns this close to where a teammate reports itself are the teammate, and are not
   // logged or posted (Mapper::setTeammates); 0: teammates are logged like the world. 0.8 m:
   // a report is off by the teammate's drift, and stereo fattens its body; with 0.5 m, home-
@@ -197,6 +201,7 @@ struct RunResult {
     double preferred_margin = 0.0;
     std::string closures;  // none, self, shared or both
     double post_gate_m = 0.0;
+    double manhattan_sigma_deg = 0.0;
   };
   std::optional<MissionSettings> mission_settings;  // with --explore
   std::vector<TimelineSample> timeline;

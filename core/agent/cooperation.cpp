@@ -101,6 +101,11 @@ void CooperationConfig::validate() const {
         "below the search radius and the margin a share in [0, 1], got " +
         std::to_string(rival_search_m) + ", " + std::to_string(rival_min_shift_m) + ", " +
         std::to_string(rival_max_turn_rad) + " and " + std::to_string(rival_margin));
+  if (!(manhattan_sigma_rad >= 0.0))
+    throw std::invalid_argument(
+        "cooperation config: field 'manhattan_sigma_rad': expected a number >= 0 (0: off), got " +
+        std::to_string(manhattan_sigma_rad));
+  manhattan.validate();
   if (!(closure_max_sigma_m >= closure_sigma_xy))
     throw std::invalid_argument(
         "cooperation config: field 'closure_max_sigma_m': expected a number >= closure_sigma_xy "
@@ -359,6 +364,16 @@ SortieReport HomeBaseCooperation::endSortie(const TraverseLog& sortie,
       closure_note += " + " + std::to_string(self.size()) + " closures within the sortie";
     closures.insert(closures.end(), self.begin(), self.end());
   }
+  const std::vector<PoseObservation> headings =
+      config_.manhattan_sigma_rad > 0.0
+          ? manhattanHeadings(sortie, c.poses, config_.closure_scans, config_.closure_stride,
+                              config_.closure_alignment.max_range, config_.manhattan_sigma_rad,
+                              config_.manhattan)
+          : std::vector<PoseObservation>{};
+  if (!headings.empty()) {
+    closure_note += " + " + std::to_string(headings.size()) + " headings from the walls";
+    closures.insert(closures.end(), headings.begin(), headings.end());
+  }
   if (!closures.empty()) {
     CorrectionConfig graph = config_.correction;
     graph.model = CorrectionModel::kPoseGraph;
@@ -435,6 +450,36 @@ std::vector<bool> misplacedEntries(const TraverseLog& log, const std::vector<Pos
         !movesWithin(a.correction, poses[(begin + end) / 2], max_m, max_rad))
       for (size_t i = begin; i < end; ++i) out[i] = true;
     if (end == n) break;
+  }
+  return out;
+}
+
+std::vector<PoseObservation> manhattanHeadings(const TraverseLog& log,
+                                               const std::vector<Pose2>& poses, int scans,
+                                               int stride, double max_range, double sigma_rad,
+                                               const ManhattanConfig& config) {
+  if (poses.size() != log.entries.size())
+    throw std::invalid_argument("manhattanHeadings: " + std::to_string(poses.size()) +
+                                " poses for a log of " + std::to_string(log.entries.size()) +
+                                " entries");
+  if (scans < 1 || stride < 1)
+    throw std::invalid_argument("manhattanHeadings: expected at least 1 scan and a stride of 1");
+  std::vector<PoseObservation> out;
+  const size_t k = static_cast<size_t>(scans), n = log.entries.size();
+  for (size_t begin = 0; begin + k <= n; begin += static_cast<size_t>(stride)) {
+    const PlacedScans stretch(log, poses, begin, begin + k);
+    const std::optional<ManhattanFit> fit =
+        manhattanTurn(hitPoints(stretch.pointers, max_range), config);
+    if (!fit) continue;
+    // The walls are turned by the heading's error: the heading, turned back, is observed;
+    // the position is left to the rest of the graph.
+    PoseObservation o;
+    o.entry = begin + k / 2;
+    o.pose = poses[o.entry];
+    o.pose.theta = wrapAngle(o.pose.theta - fit->turn_rad);
+    o.sigma_theta = sigma_rad;
+    o.xy_information = Eigen::Matrix2d::Identity() * 1e-9;
+    out.push_back(o);
   }
   return out;
 }

@@ -14,6 +14,7 @@
 #include "core/correction/home_return.h"
 #include "core/correction/traverse_log.h"
 #include "core/io/tum.h"
+#include "core/localization/manhattan.h"
 #include "core/localization/scan_alignment.h"
 #include "core/sharing/shared_map.h"
 
@@ -91,6 +92,16 @@ struct CooperationConfig {
   // (the default; the building turns it on, measured in the README).
   double post_gate_m = 0.0;
   double post_gate_rad = M_PI;
+  // Beyond the paper: headings from the building's walls (manhattanTurn). Each stretch of the
+  // corrected sortie (closure_scans radial maps every closure_stride entries) whose walls
+  // show a turn from the axes of `manhattan` gives the pose graph a heading observation of
+  // 1-sigma manhattan_sigma_rad at its middle (position free). Only for worlds whose walls
+  // run along two perpendicular axes. 0: off (the default). The building, seeds 1-12, at
+  // 0.6 deg: the corrected sorties' heading error 1.0 -> 0.35 deg (sd), their error across
+  // the corridors 0.114 -> 0.070 m (mean), the shared map's wall_recall 0.839 -> 0.857 and
+  // false_occupied_rate 0.0231 -> 0.0219 (README).
+  double manhattan_sigma_rad = 0.0;
+  ManhattanConfig manhattan;
   void validate() const;  // throws std::invalid_argument naming the field
 
   // The loop closures by name: "none", "self" (within the sortie), "shared" (to the shared
@@ -121,6 +132,16 @@ struct SortieReport {
   OdometryBias bias;
   double length_m = 0.0;
 };
+
+// Heading observations from the walls (CooperationConfig::manhattan_sigma_rad): stretches
+// of `scans` radial maps every `stride` entries, placed at `poses`, whose hits within
+// max_range (m) look turned from the axes of `config`; each observes the heading at its
+// middle entry, turned back, with 1-sigma sigma_rad, and leaves the position free. Throws
+// std::invalid_argument when the pose count differs from the log's or scans, stride < 1.
+std::vector<PoseObservation> manhattanHeadings(const TraverseLog& log,
+                                               const std::vector<Pose2>& poses, int scans,
+                                               int stride, double max_range, double sigma_rad,
+                                               const ManhattanConfig& config = {});
 
 // The entries of a corrected traverse whose stretch the aligner's map says is misplaced.
 // The traverse is cut into stretches of `scans` entries, end to end (a shorter rest joins

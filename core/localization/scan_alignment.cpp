@@ -106,19 +106,24 @@ std::vector<Eigen::Vector2d> ScanAligner::points(const std::vector<const RadialM
   return out;
 }
 
-std::vector<Eigen::Vector2d> ScanAligner::obstaclePoints(const std::vector<const RadialMap*>& scans,
-                                                         int stride) const {
+std::vector<Eigen::Vector2d> hitPoints(const std::vector<const RadialMap*>& scans, double max_range,
+                                       int stride) {
   std::vector<Eigen::Vector2d> out;
   int k = 0;
   for (const RadialMap* scan : scans)
     for (const RadialReading& r : scan->readings) {
-      if (r.kind != RadialKind::kHit || r.range > config_.max_range) continue;
+      if (r.kind != RadialKind::kHit || r.range > max_range) continue;
       if (k++ % std::max(1, stride) != 0) continue;
       out.push_back(scan->odometry *
                     (scan->sensor_origin +
                      r.range * Eigen::Vector2d(std::cos(r.bearing), std::sin(r.bearing))));
     }
   return out;
+}
+
+std::vector<Eigen::Vector2d> ScanAligner::obstaclePoints(const std::vector<const RadialMap*>& scans,
+                                                         int stride) const {
+  return hitPoints(scans, config_.max_range, stride);
 }
 
 double ScanAligner::score(const std::vector<Eigen::Vector2d>& points, const Pose2& guess,

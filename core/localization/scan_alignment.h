@@ -51,6 +51,11 @@ struct AlignmentResult {
 Eigen::Matrix2d positionInformation(const AlignmentResult& alignment, const Eigen::Vector2d& at);
 
 // A reference map prepared for alignment (its distance field computed once).
+// Every `stride`-th obstacle point (a hit) of the scans within max_range (m), each placed by
+// its scan's `odometry` pose.
+std::vector<Eigen::Vector2d> hitPoints(const std::vector<const RadialMap*>& scans, double max_range,
+                                       int stride = 1);
+
 class ScanAligner {
  public:
   explicit ScanAligner(const OccupancyGrid& reference, const AlignmentConfig& config = {});

@@ -201,6 +201,9 @@ struct World {
     // closures and self_closures; `coopmap run --closures`).
     std::optional<std::string> closures;
     std::optional<double> post_gate_m;  // m: CooperationConfig::post_gate_m (0: off)
+    // deg: CooperationConfig::manhattan_sigma_rad, headings from walls along the map frame's
+    // axes (0: off)
+    std::optional<double> manhattan_sigma_deg;
   } exploration;
 
   // The floor's rectangles: `floor_areas`, or the bounding rectangle if that is empty.

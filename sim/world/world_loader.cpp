@@ -216,11 +216,26 @@ World parseWorld(const std::string& text, const std::string& file) {
     w.mission = mode.asString();
     if (w.mission != "routes" && w.mission != "explore") mode.fail("'routes' or 'explore'");
     if (mission->isMap()) {
-      mission->allowOnly({"mode", "sortie_budget_m", "first_sortie_budget_m", "safety_distance",
-                          "slow_distance", "fringe_clearance", "goal_clearance", "retry_frontiers",
-                          "floor_edge_depth", "shaped_closures", "bump_away", "visited_radius",
-                          "calibrate_distance_scale", "passage_width", "planning_margin",
-                          "preferred_margin", "closures", "post_gate_m", "recent_hits_s"});
+      mission->allowOnly({"mode",
+                          "sortie_budget_m",
+                          "first_sortie_budget_m",
+                          "safety_distance",
+                          "slow_distance",
+                          "fringe_clearance",
+                          "goal_clearance",
+                          "retry_frontiers",
+                          "floor_edge_depth",
+                          "shaped_closures",
+                          "bump_away",
+                          "visited_radius",
+                          "calibrate_distance_scale",
+                          "passage_width",
+                          "planning_margin",
+                          "preferred_margin",
+                          "closures",
+                          "post_gate_m",
+                          "recent_hits_s",
+                          "manhattan_sigma_deg"});
       World::Exploration& e = w.exploration;
       auto metres = [&](const char* key, double lo, double hi, const char* what,
                         std::optional<double>& out) {
@@ -239,6 +254,8 @@ World parseWorld(const std::string& text, const std::string& file) {
       metres("preferred_margin", 0.0, 2.0, "metres in [0, 2] (0: off)", e.preferred_margin);
       metres("post_gate_m", 0.0, 2.0, "metres in [0, 2] (0: off)", e.post_gate_m);
       metres("recent_hits_s", 0.0, 600.0, "seconds in [0, 600] (0: off)", e.recent_hits_s);
+      metres("manhattan_sigma_deg", 0.0, 10.0, "degrees in [0, 10] (0: off)",
+             e.manhattan_sigma_deg);
       metres("visited_radius", 0.0, 1.0, "metres in [0, 1] (0: the robot's radius)",
              e.visited_radius);
       if (mission->has("retry_frontiers"))

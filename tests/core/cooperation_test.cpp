@@ -43,6 +43,12 @@ TEST(CooperationTest, BadConfigurationNamesTheField) {
   c.post_gate_m = -0.1;
   EXPECT_NE(refusal(c).find("post_gate_m"), std::string::npos) << refusal(c);
   c = CooperationConfig{};
+  c.manhattan_sigma_rad = -0.01;
+  EXPECT_NE(refusal(c).find("manhattan_sigma_rad"), std::string::npos) << refusal(c);
+  c = CooperationConfig{};
+  c.manhattan.bin_m = 0.0;
+  EXPECT_NE(refusal(c).find("bin_m"), std::string::npos) << refusal(c);
+  c = CooperationConfig{};
   c.closure_min_inliers = 1.5;
   EXPECT_NE(refusal(c).find("closure_min_inliers"), std::string::npos) << refusal(c);
   EXPECT_EQ(refusal(CooperationConfig{}), "");
@@ -217,6 +223,42 @@ TEST(CooperationTest, PostGateFlagsTheStretchesTheMapSaysAreMisplaced) {
   for (int i = 30; i < 60; ++i) nudged[i] = Pose2(poses[i].x, poses[i].y - 0.15, poses[i].theta);
   for (const bool f : misplacedEntries(log, nudged, aligner, 6, 0.7, 0.15, M_PI)) EXPECT_FALSE(f);
   EXPECT_THROW(misplacedEntries(log, {}, aligner, 6, 0.7, 0.15, M_PI), std::invalid_argument);
+}
+
+TEST(CooperationTest, WallsGiveTheHeadingWhereTheEstimateHasDrifted) {
+  // A traverse east along the corridor, looking ahead and 25 degrees to either side in turn,
+  // on an estimate whose heading drifts by 0.25 degrees a metre and whose position follows it.
+  const std::vector<test::Segment> world = corridor();
+  TraverseLog log;
+  log.robot = "jose";
+  std::vector<Pose2> estimate;
+  Pose2 drifted(0.5, 1.0, 0.0);
+  for (int i = 0; i < 100; ++i) {
+    const double look = (i / 6 % 3 - 1) * 25.0 * M_PI / 180.0;
+    const Pose2 truth(0.5 + 0.1 * i, 1.0, look);
+    TraverseEntry e;
+    e.scan = test::cameraScan(truth, world);
+    e.scan.stamp = i / 3.0;
+    log.entries.push_back(e);
+    const double error = 0.025 * i * M_PI / 180.0;
+    if (i > 0)
+      drifted = Pose2(drifted.x + 0.1 * std::cos(error), drifted.y + 0.1 * std::sin(error), 0.0);
+    estimate.push_back(Pose2(drifted.x, drifted.y, wrapAngle(look + error)));
+  }
+  const std::vector<PoseObservation> headings = manhattanHeadings(log, estimate, 6, 9, 3.5, 0.01);
+  EXPECT_GE(headings.size(), 8u);
+  for (const PoseObservation& o : headings) {
+    const double truth = log.entries[o.entry].scan.odometry.theta;
+    const double drift = wrapAngle(estimate[o.entry].theta - truth);
+    EXPECT_LT(std::abs(wrapAngle(o.pose.theta - truth)), 0.1 * M_PI / 180.0)
+        << "entry " << o.entry << ", the estimate " << drift * 180.0 / M_PI << " deg off";
+    EXPECT_EQ(o.pose.translation(), estimate[o.entry].translation());
+    EXPECT_EQ(o.sigma_theta, 0.01);
+    ASSERT_TRUE(o.xy_information.has_value());
+    EXPECT_LT(o.xy_information->norm(), 1e-6);  // the position is left free
+  }
+  EXPECT_THROW(manhattanHeadings(log, {}, 6, 9, 3.5, 0.01), std::invalid_argument);
+  EXPECT_THROW(manhattanHeadings(log, estimate, 0, 9, 3.5, 0.01), std::invalid_argument);
 }
 
 TEST(CooperationTest, RivalPlacementFindsWhereALookAtTwoAlikeCornersBelongs) {

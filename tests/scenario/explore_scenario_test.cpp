@@ -67,6 +67,7 @@ TEST(ExploreScenarioTest, TheBuildingsMissionSettingsApplyUnlessTheCommandLineSa
   EXPECT_EQ(r.mission_settings->closures, "shared");
   EXPECT_EQ(r.mission_settings->post_gate_m, 0.2);
   EXPECT_EQ(r.mission_settings->recent_hits_s, 0.0);
+  EXPECT_EQ(r.mission_settings->manhattan_sigma_deg, 0.6);
   o.safety_distance = 0.6;
   o.recent_hits_s = 5.0;
   o.passage_width = 0.0;
@@ -110,15 +111,18 @@ TEST(ExploreScenarioTest, TheBuildingsMissionSettingsApplyUnlessTheCommandLineSa
   EXPECT_EQ(r.mission_settings->preferred_margin, 0.0);
   EXPECT_EQ(r.mission_settings->closures, "self");
   EXPECT_EQ(r.mission_settings->post_gate_m, 0.0);
+  EXPECT_EQ(r.mission_settings->manhattan_sigma_deg, 0.0);
   o.planning_margin = 0.3;
   o.preferred_margin = 0.25;
   o.closures = "none";
   o.post_gate_m = 0.3;
+  o.manhattan_sigma_deg = 0.6;
   r = runWorld(o);
   EXPECT_EQ(r.mission_settings->planning_margin, 0.3);
   EXPECT_EQ(r.mission_settings->preferred_margin, 0.25);
   EXPECT_EQ(r.mission_settings->closures, "none");
   EXPECT_EQ(r.mission_settings->post_gate_m, 0.3);
+  EXPECT_EQ(r.mission_settings->manhattan_sigma_deg, 0.6);
   o.closures = "some";
   EXPECT_THROW(runWorld(o), std::invalid_argument);
 }
