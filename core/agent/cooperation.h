@@ -97,9 +97,10 @@ struct CooperationConfig {
   // show a turn from the axes of `manhattan` gives the pose graph a heading observation of
   // 1-sigma manhattan_sigma_rad at its middle (position free). Only for worlds whose walls
   // run along two perpendicular axes. 0: off (the default). The building, seeds 1-12, at
-  // 0.6 deg: the corrected sorties' heading error 1.0 -> 0.35 deg (sd), their error across
-  // the corridors 0.114 -> 0.070 m (mean), the shared map's wall_recall 0.839 -> 0.857 and
-  // false_occupied_rate 0.0231 -> 0.0219 (README).
+  // 0.6 deg: the corrected sorties' heading error 0.5-1.1 -> 0.26-0.61 deg (sd per robot),
+  // their error across the corridors 0.114 -> 0.075 m (mean), the shared map's wall_recall
+  // 0.839 -> 0.884 and false_occupied_rate 0.0231 -> 0.0219 (README). The position is left
+  // free by an xy_information of ~0 (PoseObservation has no heading-only kind).
   double manhattan_sigma_rad = 0.0;
   ManhattanConfig manhattan;
   void validate() const;  // throws std::invalid_argument naming the field

@@ -26,6 +26,11 @@ void ManhattanConfig::validate() const {
 
 namespace {
 
+// `d` turned by -turn, given turn's cosine and sine.
+Eigen::Vector2d turnedBack(const Eigen::Vector2d& d, double c, double s) {
+  return {c * d.x() + s * d.y(), -s * d.x() + c * d.y()};
+}
+
 // Sum of squared bin counts of the points' coordinates along both axes, after turning them by
 // -turn about the centre they are given from: the more points share a bin (a wall along an
 // axis), the larger. `counts` holds 2 * `half_bins` bins per axis.
@@ -35,7 +40,8 @@ double sharpness(const std::vector<Eigen::Vector2d>& centred, double turn, doubl
   const int n = 2 * half_bins;
   counts.assign(2 * static_cast<size_t>(n), 0);
   for (const Eigen::Vector2d& d : centred) {
-    const double x = c * d.x() + s * d.y(), y = -s * d.x() + c * d.y();
+    const Eigen::Vector2d q = turnedBack(d, c, s);
+    const double x = q.x(), y = q.y();
     ++counts[static_cast<size_t>(
         std::clamp(static_cast<int>(std::floor(x / bin)) + half_bins, 0, n - 1))];
     ++counts[static_cast<size_t>(
@@ -84,8 +90,7 @@ std::optional<ManhattanFit> manhattanTurn(const std::vector<Eigen::Vector2d>& po
   const double c = std::cos(turn0), s = std::sin(turn0);
   std::vector<Eigen::Vector2d> turned;  // on the axes, by the coarse turn
   turned.reserve(centred.size());
-  for (const Eigen::Vector2d& d : centred)
-    turned.emplace_back(c * d.x() + s * d.y(), -s * d.x() + c * d.y());
+  for (const Eigen::Vector2d& d : centred) turned.push_back(turnedBack(d, c, s));
   sharpness(centred, turn0, config.bin_m, half_bins, counts);
   const int n = 2 * half_bins;
   double weighted = 0.0, weights = 0.0;

@@ -36,8 +36,9 @@ struct ManhattanFit {
 };
 
 // The turn of `points` (map frame) from the building's axes; nothing when there are too few
-// points, the histograms are no sharper at any turn than at most (no straight walls), or the
-// sharpest turn is at the window's edge (walls of another direction).
+// points, the histograms are no sharper at any turn than at most (no straight walls), the
+// sharpest turn is at the window's edge (walls of another direction), or no wall is long
+// and straight enough for a line (min_wall_samples bins over min_wall_m).
 std::optional<ManhattanFit> manhattanTurn(const std::vector<Eigen::Vector2d>& points,
                                           const ManhattanConfig& config = {});
 
