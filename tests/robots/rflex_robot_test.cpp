@@ -43,6 +43,9 @@ void expectOdometryMatches(EmulatedRflexRobot& r, double tol_m, double tol_rad) 
 
 TEST(RflexRobotTest, OpensAsksForReportsAndReleasesTheBrake) {
   EmulatedRflexRobot r;
+  // The emulator takes the driver's commands on its own thread: the brake's release may land
+  // a moment after the driver has opened (the sanitizer build saw it still on).
+  EXPECT_TRUE(eventually([&] { return !r.emulator().counters().brake_on; }));
   const RflexEmulatorCounters c = r.emulator().counters();
   EXPECT_EQ(c.report_period_us, 20000u);
   EXPECT_FALSE(c.brake_on);
