@@ -33,7 +33,8 @@ struct RobotRun {
   // The estimate's frame (X_MO) when the sortie began. The tracker moves the estimate during
   // the sortie; the sortie is corrected on its odometry chain from this frame.
   Pose2 sortie_frame;
-  MapTracker tracker;  // against the shared map imported at the last home visit
+  MapTracker tracker;           // against the shared map imported at the last home visit
+  WallHeadingTracker headings;  // off unless the mission turns it on
   // Cooperative runs: odometry calibrated online from the fixes; the mapper, the mission
   // and the teammates see the calibrated odometry. `raw` keeps what the encoders said at
   // each radial map (naive sharing posts at it).

@@ -106,6 +106,12 @@ void addMissionSettingOptions(CLI::App& cmd, RunOptions& run) {
           "stretch of a sortie whose walls look turned from them gives its correction a "
           "heading of this 1-sigma (0: off) [default: the world's, else 0]")
       ->check(CLI::Range(0.0, 10.0));
+  setting(cmd, "--wall-heading", run.wall_heading_gain,
+          "With --explore: a share in [0, 1]; in a building whose walls run along the map's "
+          "axes, every few radial maps the robot's estimate is turned back by this share of "
+          "the turn of the walls it sees from the axes (0: off) [default: the world's, else "
+          "0]")
+      ->check(CLI::Range(0.0, 1.0));
   onOff(cmd, "--scale-calibration",
         "With --explore: the online odometry calibration includes the distance scale the "
         "sorties' loop closures find [default: the world's, else on]",

@@ -125,6 +125,7 @@ void writeOutputs(const RunOptions& opt, const sim::World& world, const RunResul
     j.value("passage_width", m->passage_width).value("planning_margin", m->planning_margin);
     j.value("preferred_margin", m->preferred_margin).value("closures", m->closures);
     j.value("post_gate_m", m->post_gate_m).value("manhattan_sigma_deg", m->manhattan_sigma_deg);
+    j.value("wall_heading_gain", m->wall_heading_gain);
     j.endObject();
   }
   j.value("sim_time_s", result.sim_time_s).value("wall_time_s", result.wall_time_s);
@@ -319,7 +320,11 @@ RunResult runWorld(const RunOptions& opt) {
           closures,
           pick(opt.post_gate_m, we.post_gate_m, opt.cooperation.post_gate_m),
           pick(opt.manhattan_sigma_deg, we.manhattan_sigma_deg,
-               opt.cooperation.manhattan_sigma_rad * 180.0 / M_PI)};
+               opt.cooperation.manhattan_sigma_rad * 180.0 / M_PI),
+          pick(opt.wall_heading_gain, we.wall_heading_gain, 0.0)};
+      WallHeadingConfig headings;
+      headings.gain = settings->wall_heading_gain;
+      r.headings = WallHeadingTracker(headings);
       mission.max_sorties = cooperative ? opt.max_sorties : 1;
       r.mission = std::make_unique<MissionAgent>(spec.start, mission);
       if (cooperative) {
@@ -427,18 +432,27 @@ RunResult runWorld(const RunOptions& opt) {
             r.mapper->setTeammates(teammateReports(runs, r), opt.teammate_mask_m);
           }
           r.latest = &r.mapper->process(*frame, segment);
-          if (r.tracker.hasMap() && !r.reapproaching &&
-              (r.mission->phase() == MissionPhase::kExplore ||
-               r.mission->phase() == MissionPhase::kReturn)) {
-            // The latest radial maps at the current estimate, aligned to the shared map.
+          const bool driving = r.mission && !r.reapproaching &&
+                               (r.mission->phase() == MissionPhase::kExplore ||
+                                r.mission->phase() == MissionPhase::kReturn);
+          if (driving && (r.tracker.hasMap() || r.headings.enabled())) {
+            // The latest radial maps at the current estimate: aligned to the shared map, and
+            // their walls to the building's axes.
             const std::vector<TraverseEntry>& entries = r.mapper->traverse().entries;
-            const size_t k = std::min<size_t>(6, entries.size() - r.sortie_begin);
+            const size_t k = std::min(
+                entries.size() - r.sortie_begin,
+                static_cast<size_t>(std::max(r.tracker.config().scans, r.headings.config().scans)));
             std::vector<RadialMap> latest;
             for (size_t j = entries.size() - k; j < entries.size(); ++j) {
               latest.push_back(entries[j].scan);
               latest.back().odometry = r.mapper->frame() * r.mapper->rawOdometry()[j];
             }
-            if (const std::optional<Pose2> c = r.tracker.update(latest))
+            if (r.tracker.hasMap())
+              if (const std::optional<Pose2> c = r.tracker.update(latest)) {
+                r.mapper->setFrame(*c * r.mapper->frame());
+                for (RadialMap& m : latest) m.odometry = *c * m.odometry;
+              }
+            if (const std::optional<Pose2> c = r.headings.update(latest))
               r.mapper->setFrame(*c * r.mapper->frame());
           }
           if (recorder) recorder->addFrame(r.recording, *frame, segment);

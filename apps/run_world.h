@@ -95,6 +95,10 @@ struct RunOptions {
   // walls run along the map frame's axes (CooperationConfig::manhattan_sigma_rad). Unset: the
   // world's mission setting, else 0 (off).
   std::optional<double> manhattan_sigma_deg;
+  // The share of the walls' turn from the map frame's axes by which an exploring robot's
+  // estimate is turned back while driving, every few radial maps (WallHeadingConfig::gain).
+  // Unset: the world's mission setting, else 0 (off).
+  std::optional<double> wall_heading_gain;
   // m: returns this close to where a teammate reports itself are the teammate, and are not
   // logged or posted (Mapper::setTeammates); 0: teammates are logged like the world. 0.8 m:
   // a report is off by the teammate's drift, and stereo fattens its body; with 0.5 m, home-
@@ -202,6 +206,7 @@ struct RunResult {
     std::string closures;  // none, self, shared or both
     double post_gate_m = 0.0;
     double manhattan_sigma_deg = 0.0;
+    double wall_heading_gain = 0.0;
   };
   std::optional<MissionSettings> mission_settings;  // with --explore
   std::vector<TimelineSample> timeline;

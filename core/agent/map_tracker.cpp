@@ -1,5 +1,6 @@
 #include "core/agent/map_tracker.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -53,6 +54,39 @@ std::optional<Pose2> MapTracker::update(const std::vector<RadialMap>& latest) {
       now.translation() + config_.gain * (target.translation() - now.translation());
   const Pose2 damped(t.x(), t.y(), wrapAngle(now.theta + config_.gain * dtheta));
   return damped * now.inverse();
+}
+
+void WallHeadingConfig::validate() const {
+  auto bad = [](const char* field, const std::string& expected, double v) {
+    throw std::invalid_argument(std::string("wall heading config: field '") + field +
+                                "': expected " + expected + ", got " + std::to_string(v));
+  };
+  if (!(gain >= 0.0 && gain <= 1.0)) bad("gain", "a number in [0, 1] (0: off)", gain);
+  if (scans < 1) bad("scans", "at least 1", scans);
+  if (period < 1) bad("period", "at least 1", period);
+  if (!(max_range > 0.0)) bad("max_range", "a positive number", max_range);
+  manhattan.validate();
+}
+
+WallHeadingTracker::WallHeadingTracker(const WallHeadingConfig& config) : config_(config) {
+  config_.validate();
+}
+
+std::optional<Pose2> WallHeadingTracker::update(const std::vector<RadialMap>& latest) {
+  if (!enabled() || latest.empty()) return std::nullopt;
+  if (++calls_ % config_.period != 0) return std::nullopt;
+  const size_t k = std::min(latest.size(), static_cast<size_t>(config_.scans));
+  std::vector<const RadialMap*> scans;
+  for (size_t i = latest.size() - k; i < latest.size(); ++i) scans.push_back(&latest[i]);
+  ++fitted_;
+  const std::optional<ManhattanFit> fit =
+      manhattanTurn(hitPoints(scans, config_.max_range), config_.manhattan);
+  if (!fit) return std::nullopt;
+  ++turned_;
+  // The walls are turned by the heading's error: turn the estimate back by a share of it,
+  // about where the robot is, so its position stays.
+  const Pose2& now = latest.back().odometry;
+  return Pose2(now.x, now.y, -config_.gain * fit->turn_rad) * Pose2(-now.x, -now.y, 0.0);
 }
 
 }  // namespace coopmap

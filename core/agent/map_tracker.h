@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/geometry/pose2.h"
+#include "core/localization/manhattan.h"
 #include "core/localization/scan_alignment.h"
 #include "core/mapping/occupancy_grid.h"
 #include "core/perception/radial_map.h"
@@ -41,6 +42,7 @@ class MapTracker {
   // The map to track against (a copy is kept, with its distance field); replaces the last.
   void setMap(const OccupancyGrid& map);
   bool hasMap() const { return aligner_ != nullptr; }
+  const MapTrackerConfig& config() const { return config_; }
 
   // Called once per new radial map with the latest radial maps, each at the robot's current
   // estimate of where it was taken (map frame, oldest first). Every `period` calls, aligns
@@ -56,6 +58,43 @@ class MapTracker {
   std::unique_ptr<OccupancyGrid> map_;
   std::unique_ptr<ScanAligner> aligner_;
   int calls_ = 0, aligned_ = 0, accepted_ = 0;
+};
+
+// Headings from the walls while driving (beyond the paper): in a building whose walls run
+// along the map frame's axes, the walls in the latest radial maps, placed at the estimate,
+// are turned from the axes by the estimate's heading error (manhattanTurn). Every few radial
+// maps the estimate is turned back by a share of that, about the latest pose's position, so
+// the heading stays within a fraction of a degree of the truth between home-base fixes
+// rather than drifting by degrees. It needs no map: it works in territory nobody has seen.
+// Where no straight wall is in view (an open room, a wall off the axes) nothing changes.
+struct WallHeadingConfig {
+  double gain = 0.0;  // the share of the walls' turn applied at once (0: off; the building: 0.5)
+  int scans = 6;      // radial maps whose walls are fitted together: the latest ones
+  int period = 3;     // fit after every this many new radial maps
+  double max_range = 3.5;  // m: hits farther from the camera are left out
+  ManhattanConfig manhattan;
+  void validate() const;  // throws std::invalid_argument naming the field
+};
+
+class WallHeadingTracker {
+ public:
+  explicit WallHeadingTracker(const WallHeadingConfig& config = {});
+
+  // Called once per new radial map with the latest radial maps, each at the robot's current
+  // estimate of where it was taken (map frame, oldest first). Every `period` calls, fits the
+  // walls of the last `scans` of them; returns the correction to compose onto the estimate
+  // (estimate <- correction * estimate: a turn about the latest pose's position) when they
+  // hold walls along the axes.
+  std::optional<Pose2> update(const std::vector<RadialMap>& latest);
+
+  bool enabled() const { return config_.gain > 0.0; }
+  const WallHeadingConfig& config() const { return config_; }
+  int fitted() const { return fitted_; }  // fits tried
+  int turned() const { return turned_; }  // of them, with walls: the estimate turned
+
+ private:
+  WallHeadingConfig config_;
+  int calls_ = 0, fitted_ = 0, turned_ = 0;
 };
 
 }  // namespace coopmap

@@ -204,6 +204,8 @@ struct World {
     // deg: CooperationConfig::manhattan_sigma_rad, headings from walls along the map frame's
     // axes (0: off)
     std::optional<double> manhattan_sigma_deg;
+    // WallHeadingConfig::gain: the walls turn the estimate's heading while driving (0: off)
+    std::optional<double> wall_heading_gain;
   } exploration;
 
   // The floor's rectangles: `floor_areas`, or the bounding rectangle if that is empty.

@@ -235,7 +235,8 @@ World parseWorld(const std::string& text, const std::string& file) {
                           "closures",
                           "post_gate_m",
                           "recent_hits_s",
-                          "manhattan_sigma_deg"});
+                          "manhattan_sigma_deg",
+                          "wall_heading_gain"});
       World::Exploration& e = w.exploration;
       auto metres = [&](const char* key, double lo, double hi, const char* what,
                         std::optional<double>& out) {
@@ -256,6 +257,7 @@ World parseWorld(const std::string& text, const std::string& file) {
       metres("recent_hits_s", 0.0, 600.0, "seconds in [0, 600] (0: off)", e.recent_hits_s);
       metres("manhattan_sigma_deg", 0.0, 10.0, "degrees in [0, 10] (0: off)",
              e.manhattan_sigma_deg);
+      metres("wall_heading_gain", 0.0, 1.0, "a share in [0, 1] (0: off)", e.wall_heading_gain);
       metres("visited_radius", 0.0, 1.0, "metres in [0, 1] (0: the robot's radius)",
              e.visited_radius);
       if (mission->has("retry_frontiers"))

@@ -1,6 +1,7 @@
 // Tracking against the shared map: radial maps of a room, placed at a drifted estimate,
 // pull the estimate back towards the truth; in a part of the world the map does not know,
-// or off by more than a step may be, nothing changes.
+// or off by more than a step may be, nothing changes. Headings from the walls: the room's
+// walls run along the axes, and turn a drifted heading back without any map.
 #include <cmath>
 #include <optional>
 #include <stdexcept>
@@ -109,6 +110,79 @@ TEST(MapTrackerTest, BadConfigurationNamesTheField) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("'gain'"), std::string::npos) << e.what();
   }
+}
+
+// The room's walls run along the map's axes: scans placed at an estimate whose heading has
+// drifted show them turned, and the walls alone turn the estimate back, about where it is.
+TEST(WallHeadingTrackerTest, TurnsADriftedHeadingBackAboutTheRobot) {
+  WallHeadingConfig c;
+  c.gain = 1.0;
+  c.period = 1;
+  WallHeadingTracker headings(c);
+  for (const double deg : {-2.0, -0.7, 1.5}) {
+    const std::vector<RadialMap> scans = drifted(Pose2(0.0, 0.0, deg * M_PI / 180.0), room());
+    const Pose2 before = scans.back().odometry;
+    const std::optional<Pose2> correction = headings.update(scans);
+    ASSERT_TRUE(correction.has_value()) << deg;
+    const Pose2 after = *correction * before;
+    EXPECT_GT(std::abs(wrapAngle(before.theta - kLast.theta)), 0.6 * M_PI / 180.0) << deg;
+    EXPECT_LT(std::abs(wrapAngle(after.theta - kLast.theta)), 0.1 * M_PI / 180.0) << deg;
+    EXPECT_LT((after.translation() - before.translation()).norm(), 1e-9) << "turned in place";
+  }
+  EXPECT_EQ(headings.turned(), 3);
+}
+
+TEST(WallHeadingTrackerTest, DampsEachTurnAndFitsOnlyEveryPeriod) {
+  WallHeadingConfig c;
+  c.gain = 0.5;
+  c.period = 3;
+  WallHeadingTracker headings(c);
+  const std::vector<RadialMap> scans = drifted(Pose2(0.0, 0.0, 0.03), room());
+  EXPECT_FALSE(headings.update(scans).has_value());
+  EXPECT_FALSE(headings.update(scans).has_value());
+  const std::optional<Pose2> correction = headings.update(scans);
+  ASSERT_TRUE(correction.has_value());
+  EXPECT_EQ(headings.fitted(), 1);
+  const Pose2 after = *correction * scans.back().odometry;
+  EXPECT_NEAR(wrapAngle(after.theta - kLast.theta), 0.015, 0.002) << "half of the turn";
+}
+
+TEST(WallHeadingTrackerTest, WallsOffTheAxesOrOffChangeNothing) {
+  WallHeadingConfig c;
+  c.gain = 1.0;
+  c.period = 1;
+  WallHeadingTracker headings(c);
+  // The same room turned by 20 degrees about its middle: no wall runs along the axes.
+  const Pose2 turn = Pose2(3.0, 2.5, 20.0 * M_PI / 180.0) * Pose2(-3.0, -2.5, 0.0);
+  std::vector<Segment> turned;
+  for (const Segment& s : room()) turned.push_back({turn * s.a, turn * s.b});
+  EXPECT_FALSE(headings.update(drifted(Pose2(), turned)).has_value());
+  EXPECT_EQ(headings.fitted(), 1);
+  EXPECT_EQ(headings.turned(), 0);
+  WallHeadingTracker off;  // gain 0: off
+  EXPECT_FALSE(off.enabled());
+  EXPECT_FALSE(off.update(drifted(Pose2(0.0, 0.0, 0.03), room())).has_value());
+  EXPECT_EQ(off.fitted(), 0);
+}
+
+TEST(WallHeadingTrackerTest, BadConfigurationNamesTheField) {
+  auto refusal = [](const WallHeadingConfig& c) {
+    try {
+      WallHeadingTracker t(c);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  WallHeadingConfig c;
+  c.gain = 1.5;
+  EXPECT_NE(refusal(c).find("'gain'"), std::string::npos) << refusal(c);
+  c = {};
+  c.period = 0;
+  EXPECT_NE(refusal(c).find("'period'"), std::string::npos) << refusal(c);
+  c = {};
+  c.manhattan.bin_m = 0.0;
+  EXPECT_NE(refusal(c).find("bin_m"), std::string::npos) << refusal(c);
 }
 
 }  // namespace
