@@ -76,5 +76,8 @@ SharedMapResult shareMaps(const sim::World& world, const MapLimits& limits, cons
 // sortie (core/agent/cooperation.h), apply the fix to its estimate, import the shared map,
 // and send it out again (or stop it, without a trusted fix).
 void endSortie(RobotRun& r, LocalSharedMap& live, double now, double reapproach_m, bool track);
+// Each new radial map while driving: the tracker's and the walls' corrections of the
+// estimate (run_sharing.cpp).
+void trackWhileDriving(RobotRun& r);
 
 }  // namespace coopmap::run_detail

@@ -94,6 +94,35 @@ SharedMapResult shareMaps(const sim::World& world, const MapLimits& limits, cons
   return out;
 }
 
+// While the robot explores or heads home: the latest radial maps at its current estimate,
+// aligned to the shared map it imported (--tracking), and their walls to the building's axes
+// (wall_heading_gain); each correction moves the estimate's frame.
+void trackWhileDriving(RobotRun& r) {
+  const bool driving =
+      r.mission && !r.reapproaching &&
+      (r.mission->phase() == MissionPhase::kExplore || r.mission->phase() == MissionPhase::kReturn);
+  if (driving && (r.tracker.hasMap() || r.headings.enabled())) {
+    // The latest radial maps at the current estimate: aligned to the shared map, and
+    // their walls to the building's axes.
+    const std::vector<TraverseEntry>& entries = r.mapper->traverse().entries;
+    const size_t k = std::min(
+        entries.size() - r.sortie_begin,
+        static_cast<size_t>(std::max(r.tracker.config().scans, r.headings.config().scans)));
+    std::vector<RadialMap> latest;
+    for (size_t j = entries.size() - k; j < entries.size(); ++j) {
+      latest.push_back(entries[j].scan);
+      latest.back().odometry = r.mapper->frame() * r.mapper->rawOdometry()[j];
+    }
+    if (r.tracker.hasMap())
+      if (const std::optional<Pose2> c = r.tracker.update(latest)) {
+        r.mapper->setFrame(*c * r.mapper->frame());
+        for (RadialMap& m : latest) m.odometry = *c * m.odometry;
+      }
+    if (const std::optional<Pose2> c = r.headings.update(latest))
+      r.mapper->setFrame(*c * r.mapper->frame());
+  }
+}
+
 // The robot is back at the home base and has looked at it: localize, correct and post the
 // sortie (core/agent/cooperation.h), apply the fix to its estimate, import the shared map,
 // and send it out again.

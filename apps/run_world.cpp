@@ -432,29 +432,7 @@ RunResult runWorld(const RunOptions& opt) {
             r.mapper->setTeammates(teammateReports(runs, r), opt.teammate_mask_m);
           }
           r.latest = &r.mapper->process(*frame, segment);
-          const bool driving = r.mission && !r.reapproaching &&
-                               (r.mission->phase() == MissionPhase::kExplore ||
-                                r.mission->phase() == MissionPhase::kReturn);
-          if (driving && (r.tracker.hasMap() || r.headings.enabled())) {
-            // The latest radial maps at the current estimate: aligned to the shared map, and
-            // their walls to the building's axes.
-            const std::vector<TraverseEntry>& entries = r.mapper->traverse().entries;
-            const size_t k = std::min(
-                entries.size() - r.sortie_begin,
-                static_cast<size_t>(std::max(r.tracker.config().scans, r.headings.config().scans)));
-            std::vector<RadialMap> latest;
-            for (size_t j = entries.size() - k; j < entries.size(); ++j) {
-              latest.push_back(entries[j].scan);
-              latest.back().odometry = r.mapper->frame() * r.mapper->rawOdometry()[j];
-            }
-            if (r.tracker.hasMap())
-              if (const std::optional<Pose2> c = r.tracker.update(latest)) {
-                r.mapper->setFrame(*c * r.mapper->frame());
-                for (RadialMap& m : latest) m.odometry = *c * m.odometry;
-              }
-            if (const std::optional<Pose2> c = r.headings.update(latest))
-              r.mapper->setFrame(*c * r.mapper->frame());
-          }
+          trackWhileDriving(r);
           if (recorder) recorder->addFrame(r.recording, *frame, segment);
           ++r.result.frames;
         }

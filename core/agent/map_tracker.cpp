@@ -7,6 +7,18 @@
 
 namespace coopmap {
 
+namespace {
+
+// The last `n` of the latest radial maps (all of them if fewer), oldest first.
+std::vector<const RadialMap*> lastScans(const std::vector<RadialMap>& latest, int n) {
+  const size_t k = std::min(latest.size(), static_cast<size_t>(n));
+  std::vector<const RadialMap*> scans;
+  for (size_t i = latest.size() - k; i < latest.size(); ++i) scans.push_back(&latest[i]);
+  return scans;
+}
+
+}  // namespace
+
 void MapTrackerConfig::validate() const {
   auto bad = [](const char* field, const std::string& expected, double v) {
     throw std::invalid_argument(std::string("map tracker config: field '") + field +
@@ -34,9 +46,7 @@ void MapTracker::setMap(const OccupancyGrid& map) {
 std::optional<Pose2> MapTracker::update(const std::vector<RadialMap>& latest) {
   if (!config_.enabled || !aligner_ || latest.empty()) return std::nullopt;
   if (++calls_ % config_.period != 0) return std::nullopt;
-  const size_t k = std::min(latest.size(), static_cast<size_t>(config_.scans));
-  std::vector<const RadialMap*> scans;
-  for (size_t i = latest.size() - k; i < latest.size(); ++i) scans.push_back(&latest[i]);
+  const std::vector<const RadialMap*> scans = lastScans(latest, config_.scans);
   ++aligned_;
   const AlignmentResult a = aligner_->align(scans, Pose2());
   if (!a.ok || a.points < config_.min_points || a.inliers < config_.min_inliers * a.points)
@@ -75,9 +85,7 @@ WallHeadingTracker::WallHeadingTracker(const WallHeadingConfig& config) : config
 std::optional<Pose2> WallHeadingTracker::update(const std::vector<RadialMap>& latest) {
   if (!enabled() || latest.empty()) return std::nullopt;
   if (++calls_ % config_.period != 0) return std::nullopt;
-  const size_t k = std::min(latest.size(), static_cast<size_t>(config_.scans));
-  std::vector<const RadialMap*> scans;
-  for (size_t i = latest.size() - k; i < latest.size(); ++i) scans.push_back(&latest[i]);
+  const std::vector<const RadialMap*> scans = lastScans(latest, config_.scans);
   ++fitted_;
   const std::optional<ManhattanFit> fit =
       manhattanTurn(hitPoints(scans, config_.max_range), config_.manhattan);
