@@ -112,6 +112,12 @@ void addMissionSettingOptions(CLI::App& cmd, RunOptions& run) {
           "the turn of the walls it sees from the axes (0: off) [default: the world's, else "
           "0]")
       ->check(CLI::Range(0.0, 1.0));
+  cmd.add_option_function<int>(
+         "--closure-scans", [&run](const int& v) { run.closure_scans = v; },
+         "With --explore: radial maps per stretch of a sortie's correction: each stretch "
+         "aligned to the shared map (a loop closure), each giving a heading from the walls, "
+         "each the post gate checks [default: the world's, else 6]")
+      ->check(CLI::Range(1, 100));
   onOff(cmd, "--scale-calibration",
         "With --explore: the online odometry calibration includes the distance scale the "
         "sorties' loop closures find [default: the world's, else on]",

@@ -125,7 +125,7 @@ void writeOutputs(const RunOptions& opt, const sim::World& world, const RunResul
     j.value("passage_width", m->passage_width).value("planning_margin", m->planning_margin);
     j.value("preferred_margin", m->preferred_margin).value("closures", m->closures);
     j.value("post_gate_m", m->post_gate_m).value("manhattan_sigma_deg", m->manhattan_sigma_deg);
-    j.value("wall_heading_gain", m->wall_heading_gain);
+    j.value("wall_heading_gain", m->wall_heading_gain).value("closure_scans", m->closure_scans);
     j.endObject();
   }
   j.value("sim_time_s", result.sim_time_s).value("wall_time_s", result.wall_time_s);
@@ -321,7 +321,8 @@ RunResult runWorld(const RunOptions& opt) {
           pick(opt.post_gate_m, we.post_gate_m, opt.cooperation.post_gate_m),
           pick(opt.manhattan_sigma_deg, we.manhattan_sigma_deg,
                opt.cooperation.manhattan_sigma_rad * 180.0 / M_PI),
-          pick(opt.wall_heading_gain, we.wall_heading_gain, 0.0)};
+          pick(opt.wall_heading_gain, we.wall_heading_gain, 0.0),
+          pick(opt.closure_scans, we.closure_scans, opt.cooperation.closure_scans)};
       WallHeadingConfig headings;
       headings.gain = settings->wall_heading_gain;
       r.headings = WallHeadingTracker(headings);
@@ -333,6 +334,7 @@ RunResult runWorld(const RunOptions& opt) {
         cooperation.setClosureKinds(closures);  // checked above (options) or on loading
         cooperation.post_gate_m = settings->post_gate_m;
         cooperation.manhattan_sigma_rad = settings->manhattan_sigma_deg * M_PI / 180.0;
+        cooperation.closure_scans = settings->closure_scans;
         r.coop = std::make_unique<HomeBaseCooperation>(
             spec.name, nominalHomeBase(world), world.home_base.arm_length, &*live, cooperation);
         r.calibrate = opt.calibrate_odometry;

@@ -99,6 +99,10 @@ struct RunOptions {
   // estimate is turned back while driving, every few radial maps (WallHeadingConfig::gain).
   // Unset: the world's mission setting, else 0 (off).
   std::optional<double> wall_heading_gain;
+  // Radial maps per stretch of a sortie's correction: the stretches aligned to the shared map
+  // (closures), the headings from the walls and the post gate (CooperationConfig::
+  // closure_scans). Unset: the world's mission setting, else `cooperation`'s (6).
+  std::optional<int> closure_scans;
   // m: returns this close to where a teammate reports itself are the teammate, and are not
   // logged or posted (Mapper::setTeammates); 0: teammates are logged like the world. 0.8 m:
   // a report is off by the teammate's drift, and stereo fattens its body; with 0.5 m, home-
@@ -207,6 +211,7 @@ struct RunResult {
     double post_gate_m = 0.0;
     double manhattan_sigma_deg = 0.0;
     double wall_heading_gain = 0.0;
+    int closure_scans = 0;
   };
   std::optional<MissionSettings> mission_settings;  // with --explore
   std::vector<TimelineSample> timeline;

@@ -206,6 +206,9 @@ struct World {
     std::optional<double> manhattan_sigma_deg;
     // WallHeadingConfig::gain: the walls turn the estimate's heading while driving (0: off)
     std::optional<double> wall_heading_gain;
+    // CooperationConfig::closure_scans: radial maps per stretch of a sortie's correction (its
+    // closures, its headings from the walls, its post gate)
+    std::optional<int> closure_scans;
   } exploration;
 
   // The floor's rectangles: `floor_areas`, or the bounding rectangle if that is empty.

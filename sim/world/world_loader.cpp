@@ -236,7 +236,8 @@ World parseWorld(const std::string& text, const std::string& file) {
                           "post_gate_m",
                           "recent_hits_s",
                           "manhattan_sigma_deg",
-                          "wall_heading_gain"});
+                          "wall_heading_gain",
+                          "closure_scans"});
       World::Exploration& e = w.exploration;
       auto metres = [&](const char* key, double lo, double hi, const char* what,
                         std::optional<double>& out) {
@@ -265,6 +266,8 @@ World parseWorld(const std::string& text, const std::string& file) {
       if (mission->has("shaped_closures"))
         e.shaped_closures = (*mission)["shaped_closures"].asBool();
       if (mission->has("bump_away")) e.bump_away = (*mission)["bump_away"].asBool();
+      if (mission->has("closure_scans"))
+        e.closure_scans = (*mission)["closure_scans"].asInt(1, 100);
       if (mission->has("closures")) {
         const YamlField f = (*mission)["closures"];
         e.closures = f.asString();

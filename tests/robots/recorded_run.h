@@ -59,7 +59,9 @@ inline const RecordedRun& recordedRun() {
   static const RecordedRun run = [] {
     const std::filesystem::path base = testTempDir() / "run";
     RunOptions o;
-    o.world_file = writeTestWorld("recorded_room", kRecordedRoom, "[1.2, 0.0], [1.2, -0.8]");
+    const TestWorldFile world =
+        writeTestWorld("recorded_room", kRecordedRoom, "[1.2, 0.0], [1.2, -0.8]");
+    o.world_file = world.path();
     o.seed = 7;
     o.duration = 8.0;
     o.odometry = "drifting";
@@ -69,7 +71,6 @@ inline const RecordedRun& recordedRun() {
     o.out_dir = r.live_out;
     o.record_dir = r.dir;
     r.live = runWorld(o);
-    std::filesystem::remove(o.world_file);
     return r;
   }();
   return run;

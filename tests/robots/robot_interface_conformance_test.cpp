@@ -1,5 +1,4 @@
 // The RobotInterface conformance suite on the simulated B-14 and on the replay driver.
-#include <filesystem>
 #include <memory>
 #include <string>
 
@@ -23,7 +22,7 @@ DriverUnderTest makeSimDriver() {
     std::unique_ptr<sim::Simulator> sim;
     std::unique_ptr<SimRobot> robot;
   };
-  const std::string world_file =
+  const TestWorldFile world_file =
       writeTestWorld("conformance_room",
                      R"(floor: {min: [-2, -2], max: [2, 2], texture: carpet}
 walls:
@@ -34,8 +33,7 @@ home_base:
     - {position: [1.5, 1.5], heading_deg: 0}
   texture: wood
 )");
-  const sim::World world = sim::loadWorld(world_file);
-  std::filesystem::remove(world_file);
+  const sim::World world = sim::loadWorld(world_file.path());
   auto owner = std::make_shared<Owner>();
   owner->sim = std::make_unique<sim::Simulator>(world, 1);
   const RobotModel model = loadRobotModel(world.robots[0].model_file);

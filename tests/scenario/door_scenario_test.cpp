@@ -15,7 +15,7 @@ namespace coopmap {
 namespace {
 
 // A wall with a doorway at x = 2 in front of the robot, a back wall at x = 3.8.
-std::string writeWorld(const std::string& route) {
+test_support::TestWorldFile writeWorld(const std::string& route) {
   return test_support::writeTestWorld("door",
                                       R"(floor: {min: [-1, -3], max: [4, 3], texture: carpet}
 walls:
@@ -47,7 +47,8 @@ double centralRange(const RadialMap& scan) {
 
 TEST(DoorScenarioTest, DoorOpensOnScheduleInImagesAndGroundTruth) {
   RunOptions o;
-  o.world_file = writeWorld("");
+  const test_support::TestWorldFile world_file = writeWorld("");
+  o.world_file = world_file.path();
   o.duration = 10.0;
   o.odometry = "perfect";
   const RunResult r = runWorld(o);
@@ -71,7 +72,8 @@ TEST(DoorScenarioTest, DoorOpensOnScheduleInImagesAndGroundTruth) {
 
 TEST(DoorScenarioTest, ClosedDoorStopsTheRobot) {
   RunOptions o;
-  o.world_file = writeWorld("[3.0, 0.0]");
+  const test_support::TestWorldFile world_file = writeWorld("[3.0, 0.0]");
+  o.world_file = world_file.path();
   o.duration = 5.0;  // the door opens at 6 s
   o.odometry = "perfect";
   const RunResult r = runWorld(o);

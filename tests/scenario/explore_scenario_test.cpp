@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "apps/run_world.h"
+#include "core/agent/cooperation.h"
 #include "core/agent/mission.h"
 #include "tests/support/test_world.h"
 
@@ -70,6 +71,7 @@ TEST(ExploreScenarioTest, TheBuildingsMissionSettingsApplyUnlessTheCommandLineSa
   EXPECT_EQ(r.mission_settings->recent_hits_s, 4.0);
   EXPECT_EQ(r.mission_settings->manhattan_sigma_deg, 0.6);
   EXPECT_EQ(r.mission_settings->wall_heading_gain, 0.5);
+  EXPECT_EQ(r.mission_settings->closure_scans, 18);
   o.safety_distance = 0.6;
   o.recent_hits_s = 5.0;
   o.passage_width = 0.0;
@@ -115,12 +117,14 @@ TEST(ExploreScenarioTest, TheBuildingsMissionSettingsApplyUnlessTheCommandLineSa
   EXPECT_EQ(r.mission_settings->post_gate_m, 0.0);
   EXPECT_EQ(r.mission_settings->manhattan_sigma_deg, 0.0);
   EXPECT_EQ(r.mission_settings->wall_heading_gain, 0.0);
+  EXPECT_EQ(r.mission_settings->closure_scans, CooperationConfig{}.closure_scans);
   o.planning_margin = 0.3;
   o.preferred_margin = 0.25;
   o.closures = "none";
   o.post_gate_m = 0.3;
   o.manhattan_sigma_deg = 0.6;
   o.wall_heading_gain = 0.3;
+  o.closure_scans = 12;
   r = runWorld(o);
   EXPECT_EQ(r.mission_settings->planning_margin, 0.3);
   EXPECT_EQ(r.mission_settings->preferred_margin, 0.25);
@@ -128,6 +132,7 @@ TEST(ExploreScenarioTest, TheBuildingsMissionSettingsApplyUnlessTheCommandLineSa
   EXPECT_EQ(r.mission_settings->post_gate_m, 0.3);
   EXPECT_EQ(r.mission_settings->manhattan_sigma_deg, 0.6);
   EXPECT_EQ(r.mission_settings->wall_heading_gain, 0.3);
+  EXPECT_EQ(r.mission_settings->closure_scans, 12);
   o.closures = "some";
   EXPECT_THROW(runWorld(o), std::invalid_argument);
 }
@@ -164,7 +169,7 @@ TEST(ExploreScenarioTest, TheBuildingsWallsKeepTheEstimatesHeading) {
 // A world's sortie budget is the sortie budget (it used to be read and then ignored).
 TEST(ExploreScenarioTest, TheWorldsSortieBudgetIsUsed) {
   RunOptions o;
-  o.world_file =
+  const test_support::TestWorldFile world =
       test_support::writeTestWorld("sortie_budget", R"(mission: {mode: explore, sortie_budget_m: 12}
 floor: {min: [-1, -3], max: [4, 3], texture: carpet}
 walls:
@@ -175,6 +180,7 @@ home_base:
     - {position: [1, 2.5], heading_deg: 0}
   texture: poster
 )");
+  o.world_file = world.path();
   o.explore = true;
   o.duration = 1.0;
   RunResult r = runWorld(o);

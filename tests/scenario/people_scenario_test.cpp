@@ -15,7 +15,8 @@ namespace {
 
 // A wall 3.8 m ahead of the robot; `people` is the world's people list, `more_robots` robots
 // besides r (YAML list items).
-std::string writeWorld(const std::string& people, const std::string& more_robots = "") {
+test_support::TestWorldFile writeWorld(const std::string& people,
+                                       const std::string& more_robots = "") {
   return test_support::writeTestWorld("crossing",
                                       R"(floor: {min: [-1, -4], max: [4, 4], texture: carpet}
 walls:
@@ -32,9 +33,10 @@ home_base:
 TEST(PeopleScenarioTest, PersonCrossingShowsThenLeavesNoObstacle) {
   // Walks from y = -3.5 to y = 3.5 along x = 2.5, crossing the view from t = 2 s to ~5 s.
   RunOptions o;
-  o.world_file = writeWorld(R"(people:
+  const test_support::TestWorldFile world = writeWorld(R"(people:
   - {name: ann, radius: 0.25, speed: 1.0, start_time: 0.5, path: [[2.5, -3.5], [2.5, 3.5]]}
 )");
+  o.world_file = world.path();
   o.robots = 1;
   o.duration = 12.0;
   o.odometry = "perfect";
@@ -71,12 +73,12 @@ TEST(PeopleScenarioTest, ATeammateIsNotLoggedWhereItReportsItself) {
   // the teammate is an obstacle in what r logs (and would post); masked where it reports
   // itself (perfect odometry: where it is), it is not, and the wall beside it still is. r's
   // own map, which it drives by, shows the teammate either way.
-  const std::string world = writeWorld(
+  const test_support::TestWorldFile world = writeWorld(
       "", "  - name: mate\n    model: " + std::string(COOPMAP_SOURCE_DIR) +
               "/robots/b14/b14.yaml\n    start: {position: [2.0, 0.0], heading_deg: 0}\n");
   for (const double mask : {0.0, 0.5}) {
     RunOptions o;
-    o.world_file = world;
+    o.world_file = world.path();
     o.robots = 2;
     o.duration = 4.0;
     o.odometry = "perfect";
@@ -110,9 +112,10 @@ TEST(PeopleScenarioTest, ATeammateIsNotLoggedWhereItReportsItself) {
 
 TEST(PeopleScenarioTest, PersonWalkingIntoTheRobotIsAContact) {
   RunOptions o;
-  o.world_file = writeWorld(R"(people:
+  const test_support::TestWorldFile world = writeWorld(R"(people:
   - {name: bob, radius: 0.25, speed: 0.8, yield_distance: 0, path: [[3.0, 0.0], [-0.5, 0.0]]}
 )");
+  o.world_file = world.path();
   o.robots = 1;
   o.duration = 6.0;
   o.odometry = "perfect";

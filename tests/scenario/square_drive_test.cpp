@@ -12,7 +12,7 @@
 namespace coopmap {
 namespace {
 
-std::string squareWorld(int laps) {
+test_support::TestWorldFile squareWorld(int laps) {
   std::string route;
   for (int i = 0; i < laps; ++i) route += "[2.0, 0.0], [2.0, 2.0], [0.0, 2.0], [0.0, 0.0], ";
   return test_support::writeTestWorld("square_" + std::to_string(laps),
@@ -35,7 +35,8 @@ struct Drift {
 
 Drift drive(int laps, uint64_t seed, const sim::OdometryConfig& preset) {
   RunOptions o;
-  o.world_file = squareWorld(laps);
+  const test_support::TestWorldFile world = squareWorld(laps);
+  o.world_file = world.path();
   o.seed = seed;
   o.duration = 40.0 * laps;
   o.steer_by_truth = true;

@@ -90,7 +90,7 @@ TEST(WorldLoaderTest, MissionSettingsOfABuildingAreReadAndChecked) {
       "floor_edge_depth: 1.5, shaped_closures: true, bump_away: true, visited_radius: 0.09, "
       "calibrate_distance_scale: false, passage_width: 1.2, sortie_budget_m: 30, "
       "planning_margin: 0.2, preferred_margin: 0.3, closures: both, post_gate_m: 0.25, "
-      "recent_hits_s: 8, manhattan_sigma_deg: 0.6, wall_heading_gain: 0.5}\n" +
+      "recent_hits_s: 8, manhattan_sigma_deg: 0.6, wall_heading_gain: 0.5, closure_scans: 12}\n" +
           minimal(),
       "w.yaml");
   EXPECT_EQ(w.mission, "explore");
@@ -114,6 +114,7 @@ TEST(WorldLoaderTest, MissionSettingsOfABuildingAreReadAndChecked) {
   EXPECT_EQ(w.exploration.recent_hits_s, 8.0);
   EXPECT_EQ(w.exploration.manhattan_sigma_deg, 0.6);
   EXPECT_EQ(w.exploration.wall_heading_gain, 0.5);
+  EXPECT_EQ(w.exploration.closure_scans, 12);
   EXPECT_FALSE(parseWorld(minimal(), "w.yaml").exploration.safety_distance.has_value());
   const World building = loadWorld(kSrc + "/worlds/lab_corridor.yaml");
   EXPECT_TRUE(building.exploration.retry_frontiers.value_or(false));
@@ -138,6 +139,15 @@ TEST(WorldLoaderTest, MissionSettingsOfABuildingAreReadAndChecked) {
   e = errorOf("mission: {mode: explore, wall_heading_gain: 2}\n" + minimal());
   EXPECT_NE(e.find("w.yaml:1:45: mission.wall_heading_gain: expected a share in [0, 1] (0: off), "
                    "got '2'"),
+            std::string::npos)
+      << e;
+  e = errorOf("mission: {mode: explore, closure_scans: 2.5}\n" + minimal());
+  EXPECT_NE(e.find("w.yaml:1:41: mission.closure_scans: expected an integer in [1, 100], "
+                   "got '2.5'"),
+            std::string::npos)
+      << e;
+  e = errorOf("mission: {mode: explore, closure_scans: 0}\n" + minimal());
+  EXPECT_NE(e.find("mission.closure_scans: expected an integer in [1, 100], got '0'"),
             std::string::npos)
       << e;
   e = errorOf("mission: {mode: explore, bump_away: sometimes}\n" + minimal());
