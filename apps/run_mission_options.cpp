@@ -118,6 +118,12 @@ void addMissionSettingOptions(CLI::App& cmd, RunOptions& run) {
          "aligned to the shared map (a loop closure), each giving a heading from the walls, "
          "each the post gate checks [default: the world's, else 6]")
       ->check(CLI::Range(1, 100));
+  cmd.add_option_function<int>(
+         "--look-again", [&run](const int& v) { run.look_again_gain = v; },
+         "With --explore and --retry-frontiers: never-observed cells; once no frontier is left "
+         "to go to, a frontier whose goal was reached but that still has this many is gone to "
+         "once more, to turn a full circle there (0: off) [default: the world's, else 0]")
+      ->check(CLI::Range(0, 10000));
   onOff(cmd, "--scale-calibration",
         "With --explore: the online odometry calibration includes the distance scale the "
         "sorties' loop closures find [default: the world's, else on]",

@@ -126,6 +126,7 @@ void writeOutputs(const RunOptions& opt, const sim::World& world, const RunResul
     j.value("preferred_margin", m->preferred_margin).value("closures", m->closures);
     j.value("post_gate_m", m->post_gate_m).value("manhattan_sigma_deg", m->manhattan_sigma_deg);
     j.value("wall_heading_gain", m->wall_heading_gain).value("closure_scans", m->closure_scans);
+    j.value("look_again_gain", m->look_again_gain);
     j.endObject();
   }
   j.value("sim_time_s", result.sim_time_s).value("wall_time_s", result.wall_time_s);
@@ -290,6 +291,8 @@ RunResult runWorld(const RunOptions& opt) {
           pick(opt.fringe_clearance, we.fringe_clearance, mission.frontiers.fringe_clearance);
       mission.frontiers.goal_clearance =
           pick(opt.goal_clearance, we.goal_clearance, mission.frontiers.goal_clearance);
+      mission.frontiers.look_again_gain =
+          pick(opt.look_again_gain, we.look_again_gain, mission.frontiers.look_again_gain);
       mission.retry_frontiers =
           pick(opt.retry_frontiers, we.retry_frontiers, mission.retry_frontiers);
       mission.bump_away = pick(opt.bump_away, we.bump_away, mission.bump_away);
@@ -322,7 +325,8 @@ RunResult runWorld(const RunOptions& opt) {
           pick(opt.manhattan_sigma_deg, we.manhattan_sigma_deg,
                opt.cooperation.manhattan_sigma_rad * 180.0 / M_PI),
           pick(opt.wall_heading_gain, we.wall_heading_gain, 0.0),
-          pick(opt.closure_scans, we.closure_scans, opt.cooperation.closure_scans)};
+          pick(opt.closure_scans, we.closure_scans, opt.cooperation.closure_scans),
+          mission.frontiers.look_again_gain};
       WallHeadingConfig headings;
       headings.gain = settings->wall_heading_gain;
       r.headings = WallHeadingTracker(headings);

@@ -103,6 +103,10 @@ struct RunOptions {
   // (closures), the headings from the walls and the post gate (CooperationConfig::
   // closure_scans). Unset: the world's mission setting, else `cooperation`'s (6).
   std::optional<int> closure_scans;
+  // Never-observed cells a frontier whose goal was reached must still have to be gone to once
+  // more, for a full turn there (FrontierConfig::look_again_gain). Unset: the world's
+  // mission setting, else 0 (off).
+  std::optional<int> look_again_gain;
   // m: returns this close to where a teammate reports itself are the teammate, and are not
   // logged or posted (Mapper::setTeammates); 0: teammates are logged like the world. 0.8 m:
   // a report is off by the teammate's drift, and stereo fattens its body; with 0.5 m, home-
@@ -212,6 +216,7 @@ struct RunResult {
     double manhattan_sigma_deg = 0.0;
     double wall_heading_gain = 0.0;
     int closure_scans = 0;
+    int look_again_gain = 0;
   };
   std::optional<MissionSettings> mission_settings;  // with --explore
   std::vector<TimelineSample> timeline;

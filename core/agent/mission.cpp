@@ -197,9 +197,16 @@ void MissionAgent::chooseGoal(double now, const Pose2& odometry, const Occupancy
   goal_deadline_ =
       now + config_.goal_timeout_factor * (path_.length() / config_.route.linear_speed + 10.0);
   last_check_ = now;
-  startRoute(routeOf(path_.waypoints), now);
-  last_event_ =
-      "to frontier at (" + std::to_string(goal_.x()) + ", " + std::to_string(goal_.y()) + ")";
+  std::vector<Waypoint> route = routeOf(path_.waypoints);
+  if (step.look_around) {
+    // Its frontier was not seen from this goal before: a full circle there shows it.
+    if (route.empty()) route.push_back({odometry.translation(), false, 0.0, 0.0});
+    route.back().spin = true;
+    goal_deadline_ += config_.goal_timeout_factor * 2.0 * M_PI / config_.route.angular_speed;
+  }
+  startRoute(std::move(route), now);
+  last_event_ = std::string(step.look_around ? "to look around again at (" : "to frontier at (") +
+                std::to_string(goal_.x()) + ", " + std::to_string(goal_.y()) + ")";
 }
 
 void MissionAgent::goHome(double now, const Pose2& odometry, const OccupancyGrid& map) {

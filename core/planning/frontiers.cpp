@@ -22,6 +22,7 @@ void FrontierConfig::validate() const {
   if (!(claim_radius >= 0.0)) bad("claim_radius", "a number >= 0", claim_radius);
   if (!(fringe_clearance >= 0.0)) bad("fringe_clearance", "a number >= 0", fringe_clearance);
   if (!(goal_clearance >= 0.0)) bad("goal_clearance", "a number >= 0", goal_clearance);
+  if (look_again_gain < 0) bad("look_again_gain", "an integer >= 0", look_again_gain);
 }
 
 namespace {
@@ -175,17 +176,19 @@ FrontierExplorer::FrontierExplorer(const FrontierConfig& frontiers, const Planne
   config_.validate();
 }
 
-bool FrontierExplorer::reached(const Eigen::Vector2d& goal) const {
-  for (const Eigen::Vector2d& b : reached_)
-    if ((b - goal).norm() <= config_.blacklist_radius) return true;
+bool FrontierExplorer::near(const std::vector<Eigen::Vector2d>& places, const Eigen::Vector2d& goal,
+                            double radius) {
+  for (const Eigen::Vector2d& b : places)
+    if ((b - goal).norm() <= radius) return true;
   return false;
 }
 
+bool FrontierExplorer::reached(const Eigen::Vector2d& goal) const {
+  return near(reached_, goal, config_.blacklist_radius);
+}
+
 bool FrontierExplorer::blacklisted(const Eigen::Vector2d& goal) const {
-  if (reached(goal)) return true;
-  for (const Eigen::Vector2d& b : blacklist_)
-    if ((b - goal).norm() <= config_.blacklist_radius) return true;
-  return false;
+  return reached(goal) || near(blacklist_, goal, config_.blacklist_radius);
 }
 
 double FrontierExplorer::claimFactor(const Eigen::Vector2d& goal,
@@ -209,8 +212,41 @@ ExploreStep FrontierExplorer::next(const OccupancyGrid& grid, const PlanningMap&
   FrontierConfig plain = config_;
   plain.fringe_clearance = 0.0;
   ExploreStep step = nextWith(plain, grid, planning, robot, claimed);
-  if (step.status != ExploreStatus::kDone || config_.fringe_clearance <= 0.0) return step;
-  return nextWith(config_, grid, planning, robot, claimed);
+  if (step.status == ExploreStatus::kDone && config_.fringe_clearance > 0.0)
+    step = nextWith(config_, grid, planning, robot, claimed);
+  if (step.status != ExploreStatus::kDone || config_.look_again_gain <= 0) return step;
+  ExploreStep again = lookAgain(grid, planning, robot);
+  return again.status == ExploreStatus::kGoal ? again : step;
+}
+
+ExploreStep FrontierExplorer::lookAgain(const OccupancyGrid& grid, const PlanningMap& planning,
+                                        const Pose2& robot) {
+  ExploreStep step;
+  const std::vector<Frontier> frontiers =
+      findFrontiers(grid, planning, robot.translation(), config_);
+  step.frontiers = static_cast<int>(frontiers.size());
+  std::vector<std::pair<double, const Frontier*>> candidates;  // (utility, frontier)
+  for (const Frontier& f : frontiers) {
+    if (!f.has_goal || f.gain < config_.look_again_gain || !reached(f.goal) ||
+        near(blacklist_, f.goal, config_.blacklist_radius) ||
+        near(looked_around_, f.goal, config_.blacklist_radius))
+      continue;
+    const double d = (f.goal - robot.translation()).norm();
+    candidates.push_back({f.gain / (1.0 + config_.cost_weight * d), &f});
+  }
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [](const auto& a, const auto& b) { return a.first > b.first; });
+  for (const auto& [utility, f] : candidates) {
+    looked_around_.push_back(f->goal);  // once, whether it can be planned to or not
+    PlanResult plan = planner_.plan(planning, robot, f->goal);
+    if (!plan.solved()) continue;
+    step.status = ExploreStatus::kGoal;
+    step.frontier = *f;
+    step.plan = std::move(plan);
+    step.look_around = true;
+    return step;
+  }
+  return step;
 }
 
 ExploreStep FrontierExplorer::nextWith(const FrontierConfig& config, const OccupancyGrid& grid,
@@ -244,9 +280,12 @@ ExploreStep FrontierExplorer::nextWith(const FrontierConfig& config, const Occup
     char buf[96];
     for (const Frontier& f : frontiers) {
       const bool seen_from_goal = f.has_goal && reached(f.goal);
+      const bool looked_around =
+          seen_from_goal && near(looked_around_, f.goal, config_.blacklist_radius);
       std::snprintf(buf, sizeof buf, " (%.1f, %.1f) %s;", f.centroid.x(), f.centroid.y(),
                     !f.has_goal      ? "no reachable goal"
                     : f.gain == 0    ? "nothing unknown near"
+                    : looked_around  ? "looked around from its goal before"
                     : seen_from_goal ? "looked from its goal before"
                                      : "goal blacklisted");
       step.reason += buf;

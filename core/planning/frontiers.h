@@ -35,6 +35,13 @@ struct FrontierConfig {
   // m: a goal this far from every blocked cell (centre to centre) is preferred to a nearer
   // one with less; 0: the nearest free cell, whatever its clearance.
   double goal_clearance = 0.0;
+  // Never-observed cells: a frontier whose goal the robot has reached (markReached) but that
+  // still has at least this gain once no other frontier has a goal is gone to once more, to
+  // turn a full circle at its goal (ExploreStep::look_around). Arriving, a robot faces the
+  // way it came, which often is not the frontier's (the mouth of a side corridor passed at
+  // its end): exploration ended with whole corridors unseen. A mission marks its reached
+  // goals with MissionConfig::retry_frontiers (without, it blacklists them). 0: off.
+  int look_again_gain = 0;
   void validate() const;  // throws std::invalid_argument naming the field
 };
 
@@ -65,6 +72,9 @@ struct ExploreStep {
   double claim_factor = 1.0;  // of the chosen one: 1 unclaimed, near 0 a teammate's goal
   std::string reason;         // why done
   int failed_left = 0;        // when done: frontiers whose goals failed or that have none
+  // The chosen frontier's goal was reached before (FrontierConfig::look_again_gain): turn a
+  // full circle there.
+  bool look_around = false;
 };
 
 // Chooses where to explore next; remembers failed goals.
@@ -76,7 +86,8 @@ class FrontierExplorer {
   // robot's radius), with its plan; kDone when no reachable frontier is left. `claimed`:
   // where teammates explore (map frame), see FrontierConfig::claim_radius. Frontiers on the
   // fringe of uncertain cells (fringe_clearance) are looked at only when no frontier on
-  // never-observed cells has a goal: near obstacles they draw the robot into bumps.
+  // never-observed cells has a goal: near obstacles they draw the robot into bumps. Then, once
+  // each, frontiers whose goals were reached (FrontierConfig::look_again_gain).
   ExploreStep next(const OccupancyGrid& grid, const PlanningMap& planning, const Pose2& robot,
                    const std::vector<Eigen::Vector2d>& claimed = {});
   // The factor by which `claimed` lowers the utility of a frontier whose goal is `goal`.
@@ -96,10 +107,15 @@ class FrontierExplorer {
   ExploreStep nextWith(const FrontierConfig& config, const OccupancyGrid& grid,
                        const PlanningMap& planning, const Pose2& robot,
                        const std::vector<Eigen::Vector2d>& claimed);
+  // The best frontier whose goal was reached but not looked around from (look_again_gain).
+  ExploreStep lookAgain(const OccupancyGrid& grid, const PlanningMap& planning, const Pose2& robot);
+  static bool near(const std::vector<Eigen::Vector2d>& places, const Eigen::Vector2d& goal,
+                   double radius);
   FrontierConfig config_;
   PathPlanner planner_;
   std::vector<Eigen::Vector2d> blacklist_;
   std::vector<Eigen::Vector2d> reached_;
+  std::vector<Eigen::Vector2d> looked_around_;  // goals chosen by lookAgain (planned or not)
   bool reached(const Eigen::Vector2d& goal) const;
 };
 

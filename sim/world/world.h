@@ -209,6 +209,9 @@ struct World {
     // CooperationConfig::closure_scans: radial maps per stretch of a sortie's correction (its
     // closures, its headings from the walls, its post gate)
     std::optional<int> closure_scans;
+    // FrontierConfig::look_again_gain: never-observed cells a frontier whose goal was reached
+    // must still have to be gone to once more, for a full turn there (0: off)
+    std::optional<int> look_again_gain;
   } exploration;
 
   // The floor's rectangles: `floor_areas`, or the bounding rectangle if that is empty.

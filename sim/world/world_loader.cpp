@@ -237,7 +237,8 @@ World parseWorld(const std::string& text, const std::string& file) {
                           "recent_hits_s",
                           "manhattan_sigma_deg",
                           "wall_heading_gain",
-                          "closure_scans"});
+                          "closure_scans",
+                          "look_again_gain"});
       World::Exploration& e = w.exploration;
       auto metres = [&](const char* key, double lo, double hi, const char* what,
                         std::optional<double>& out) {
@@ -268,6 +269,8 @@ World parseWorld(const std::string& text, const std::string& file) {
       if (mission->has("bump_away")) e.bump_away = (*mission)["bump_away"].asBool();
       if (mission->has("closure_scans"))
         e.closure_scans = (*mission)["closure_scans"].asInt(1, 100);
+      if (mission->has("look_again_gain"))
+        e.look_again_gain = (*mission)["look_again_gain"].asInt(0, 10000);
       if (mission->has("closures")) {
         const YamlField f = (*mission)["closures"];
         e.closures = f.asString();

@@ -115,6 +115,45 @@ TEST(FrontiersTest, AFrontierATeammateClaimedIsLeftToIt) {
   EXPECT_DOUBLE_EQ(ignored.claim_factor, 1.0);
 }
 
+// A frontier whose goal was reached is not chosen again, unless look_again_gain asks for one
+// more visit (a full turn there): once, and only for a frontier with that much unknown left.
+TEST(FrontiersTest, AFrontierLookedAtFromItsGoalIsVisitedOnceMoreToLookAround) {
+  const OccupancyGrid g = roomWithDoors({{1.5, 2.5}});
+  const PlanningMap p = planningOf(g);
+  const Pose2 robot(1.0, 1.0, 0.0);
+  FrontierExplorer plain({}, PlannerConfig{});
+  const ExploreStep first = plain.next(g, p, robot);
+  ASSERT_EQ(first.status, ExploreStatus::kGoal) << first.reason;
+  EXPECT_FALSE(first.look_around);
+  plain.markReached(first.frontier.goal);
+  const ExploreStep done = plain.next(g, p, robot);
+  EXPECT_EQ(done.status, ExploreStatus::kDone);
+  EXPECT_EQ(done.reason,
+            "1 frontiers, none with a reachable goal not blacklisted: (3.0, 2.0) looked from its "
+            "goal before");
+
+  FrontierConfig again;
+  again.look_again_gain = 20;
+  FrontierExplorer looking(again, PlannerConfig{});
+  looking.markReached(first.frontier.goal);
+  const ExploreStep look = looking.next(g, p, robot);
+  ASSERT_EQ(look.status, ExploreStatus::kGoal) << look.reason;
+  EXPECT_TRUE(look.look_around);
+  EXPECT_LT((look.frontier.goal - first.frontier.goal).norm(), 0.06);
+  ASSERT_TRUE(look.plan.solved());
+  const ExploreStep after = looking.next(g, p, robot);
+  EXPECT_EQ(after.status, ExploreStatus::kDone);
+  EXPECT_EQ(after.reason,
+            "1 frontiers, none with a reachable goal not blacklisted: (3.0, 2.0) looked around "
+            "from its goal before");
+
+  // More unknown asked for than the doorway has behind it: no second visit.
+  again.look_again_gain = first.frontier.gain + 1;
+  FrontierExplorer demanding(again, PlannerConfig{});
+  demanding.markReached(first.frontier.goal);
+  EXPECT_EQ(demanding.next(g, p, robot).status, ExploreStatus::kDone);
+}
+
 TEST(FrontiersTest, AClosedRoomIsExplored) {
   const OccupancyGrid g = roomWithDoors({});
   FrontierExplorer explorer({}, PlannerConfig{});
@@ -224,6 +263,9 @@ TEST(FrontiersTest, BadConfigNamesTheField) {
                  "frontier config: field 'gain_radius': expected a positive number, got "
                  "-1.000000");
   }
+  c = FrontierConfig{};
+  c.look_again_gain = -1;
+  EXPECT_THROW(c.validate(), std::invalid_argument);
 }
 
 }  // namespace

@@ -90,7 +90,8 @@ TEST(WorldLoaderTest, MissionSettingsOfABuildingAreReadAndChecked) {
       "floor_edge_depth: 1.5, shaped_closures: true, bump_away: true, visited_radius: 0.09, "
       "calibrate_distance_scale: false, passage_width: 1.2, sortie_budget_m: 30, "
       "planning_margin: 0.2, preferred_margin: 0.3, closures: both, post_gate_m: 0.25, "
-      "recent_hits_s: 8, manhattan_sigma_deg: 0.6, wall_heading_gain: 0.5, closure_scans: 12}\n" +
+      "recent_hits_s: 8, manhattan_sigma_deg: 0.6, wall_heading_gain: 0.5, closure_scans: 12, "
+      "look_again_gain: 30}\n" +
           minimal(),
       "w.yaml");
   EXPECT_EQ(w.mission, "explore");
@@ -115,6 +116,7 @@ TEST(WorldLoaderTest, MissionSettingsOfABuildingAreReadAndChecked) {
   EXPECT_EQ(w.exploration.manhattan_sigma_deg, 0.6);
   EXPECT_EQ(w.exploration.wall_heading_gain, 0.5);
   EXPECT_EQ(w.exploration.closure_scans, 12);
+  EXPECT_EQ(w.exploration.look_again_gain, 30);
   EXPECT_FALSE(parseWorld(minimal(), "w.yaml").exploration.safety_distance.has_value());
   const World building = loadWorld(kSrc + "/worlds/lab_corridor.yaml");
   EXPECT_TRUE(building.exploration.retry_frontiers.value_or(false));
@@ -148,6 +150,10 @@ TEST(WorldLoaderTest, MissionSettingsOfABuildingAreReadAndChecked) {
       << e;
   e = errorOf("mission: {mode: explore, closure_scans: 0}\n" + minimal());
   EXPECT_NE(e.find("mission.closure_scans: expected an integer in [1, 100], got '0'"),
+            std::string::npos)
+      << e;
+  e = errorOf("mission: {mode: explore, look_again_gain: -5}\n" + minimal());
+  EXPECT_NE(e.find("mission.look_again_gain: expected an integer in [0, 10000], got '-5'"),
             std::string::npos)
       << e;
   e = errorOf("mission: {mode: explore, bump_away: sometimes}\n" + minimal());
