@@ -65,7 +65,7 @@ TEST(ExploreScenarioTest, TheBuildingsMissionSettingsApplyUnlessTheCommandLineSa
   EXPECT_EQ(r.mission_settings->passage_width, 1.2);
   EXPECT_EQ(r.mission_settings->sortie_budget_m, 40.0);
   EXPECT_EQ(r.mission_settings->planning_margin, 0.12);
-  EXPECT_EQ(r.mission_settings->preferred_margin, 0.0);
+  EXPECT_EQ(r.mission_settings->preferred_margin, 0.3);
   EXPECT_EQ(r.mission_settings->closures, "shared");
   EXPECT_EQ(r.mission_settings->post_gate_m, 0.2);
   EXPECT_EQ(r.mission_settings->recent_hits_s, 4.0);
