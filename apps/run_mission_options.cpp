@@ -138,6 +138,14 @@ void addMissionSettingOptions(CLI::App& cmd, RunOptions& run) {
         "--round-closures",
         "With --explore and closures: each closure pins its position in every direction alike",
         run.shaped_closures);
+  onOff(cmd, "--closure-seen-points",
+        "With --explore: the sorties' alignments to the shared map (closures, post gate) "
+        "leave out points where the map saw nothing, but for those just behind a surface it "
+        "saw (past a mapped wall's end they pull a stretch back onto it) [default: the "
+        "world's, else off]",
+        "--closure-near-points",
+        "With --explore: those alignments use every point near the map's obstacles",
+        run.closure_seen_points);
 }
 
 }  // namespace coopmap

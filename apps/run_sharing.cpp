@@ -132,6 +132,8 @@ void endSortie(RobotRun& r, LocalSharedMap& live, double now, double reapproach_
   sortie.robot = all.robot;
   sortie.entries.assign(all.entries.begin() + static_cast<std::ptrdiff_t>(r.sortie_begin),
                         all.entries.end());
+  std::vector<Pose2> estimate;
+  for (const TraverseEntry& e : sortie.entries) estimate.push_back(e.scan.odometry);
   // The sortie on its odometry chain from where it began (the tracker's steps are not motion).
   for (size_t j = 0; j < sortie.entries.size(); ++j)
     sortie.entries[j].scan.odometry = r.sortie_frame * r.mapper->rawOdometry()[r.sortie_begin + j];
@@ -162,7 +164,7 @@ void endSortie(RobotRun& r, LocalSharedMap& live, double now, double reapproach_
   std::optional<Eigen::Vector2d> expected;
   if (r.reapproaching) expected = r.home.translation();
   r.reapproaching = false;
-  const SortieReport rep = r.coop->endSortie(sortie, expected);
+  const SortieReport rep = r.coop->endSortie(sortie, expected, &estimate);
   if (rep.fixed) r.mapper->setFrame(rep.correction * r.sortie_frame);
   if (rep.posted && r.calibrate) r.calibration.addSortie(rep.bias, rep.length_m);
   r.sortie_frame = r.mapper->frame();

@@ -120,6 +120,7 @@ void writeOutputs(const RunOptions& opt, const sim::World& world, const RunResul
     j.value("fringe_clearance", m->fringe_clearance).value("goal_clearance", m->goal_clearance);
     j.value("retry_frontiers", m->retry_frontiers).value("floor_edge_depth", m->floor_edge_depth);
     j.value("shaped_closures", m->shaped_closures).value("bump_away", m->bump_away);
+    j.value("closure_seen_points", m->closure_seen_points);
     j.value("visited_radius", m->visited_radius).value("recent_hits_s", m->recent_hits_s);
     j.value("calibrate_distance_scale", m->calibrate_distance_scale);
     j.value("passage_width", m->passage_width).value("planning_margin", m->planning_margin);
@@ -313,6 +314,8 @@ RunResult runWorld(const RunOptions& opt) {
           mission.retry_frontiers,
           mapper_config.radial.floor_edge_depth,
           pick(opt.shaped_closures, we.shaped_closures, opt.cooperation.closure_shape),
+          pick(opt.closure_seen_points, we.closure_seen_points,
+               opt.cooperation.closure_alignment.seen_points_only),
           mission.bump_away,
           mission.visited_radius,
           mission.recent_hits_s,
@@ -335,6 +338,7 @@ RunResult runWorld(const RunOptions& opt) {
       if (cooperative) {
         CooperationConfig cooperation = opt.cooperation;
         cooperation.closure_shape = settings->shaped_closures;
+        cooperation.closure_alignment.seen_points_only = settings->closure_seen_points;
         cooperation.setClosureKinds(closures);  // checked above (options) or on loading
         cooperation.post_gate_m = settings->post_gate_m;
         cooperation.manhattan_sigma_rad = settings->manhattan_sigma_deg * M_PI / 180.0;

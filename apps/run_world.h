@@ -53,6 +53,7 @@ struct RunOptions {
   std::optional<bool> retry_frontiers;          // MissionConfig::retry_frontiers
   std::optional<double> floor_edge_depth;       // m: RadialMapConfig::floor_edge_depth (0: off)
   std::optional<bool> shaped_closures;          // CooperationConfig::closure_shape
+  std::optional<bool> closure_seen_points;      // AlignmentConfig::seen_points_only (closures)
   std::optional<bool> bump_away;                // MissionConfig::bump_away
   std::optional<double> visited_radius;         // m: MissionConfig::visited_radius (0: radius)
   std::optional<double> recent_hits_s;          // s: MissionConfig::recent_hits_s (0: off)
@@ -204,6 +205,7 @@ struct RunResult {
     bool retry_frontiers = false;
     double floor_edge_depth = 0.0;
     bool shaped_closures = false;
+    bool closure_seen_points = false;
     bool bump_away = false;
     double visited_radius = 0.0;
     double recent_hits_s = 0.0;

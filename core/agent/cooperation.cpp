@@ -30,7 +30,7 @@ struct PlacedScans {
 
 // Whether an alignment's correction (map frame) moves `pose` by at most `max_m` and turns it
 // by at most `max_rad` (the post gate asks at a stretch's middle, the closures at the map's
-// origin: see closuresAgainst).
+// origin: see mapClosures).
 bool movesWithin(const Pose2& correction, const Pose2& pose, double max_m, double max_rad) {
   const Pose2 moved = correction * pose;
   return (moved.translation() - pose.translation()).norm() <= max_m &&
@@ -301,7 +301,8 @@ SortieReport HomeBaseCooperation::locate(const TraverseLog& sortie) const {
 }
 
 SortieReport HomeBaseCooperation::endSortie(const TraverseLog& sortie,
-                                            const std::optional<Eigen::Vector2d>& expected) {
+                                            const std::optional<Eigen::Vector2d>& expected,
+                                            const std::vector<Pose2>* estimate) {
   // The shared map as it is now, prepared for alignment (once).
   const SharedView view(*shared_, config_.closure_alignment);
   Located l = locateSortie(sortie, view);
@@ -336,11 +337,11 @@ SortieReport HomeBaseCooperation::endSortie(const TraverseLog& sortie,
     return done();
   }
   const std::optional<ScanAligner>& aligner = view.aligner;
+  const size_t n = sortie.entries.size();
   std::vector<PoseObservation> closures;
   std::string closure_note;
-  const size_t n = sortie.entries.size();
   if (config_.closures && aligner) {
-    closures = closuresAgainst(sortie, c.poses, *aligner, 0, n);
+    closures = mapClosures(sortie, c.poses, *aligner, config_, 0, n, estimate);
     if (!closures.empty())
       closure_note += " + " + std::to_string(closures.size()) + " closures to the shared map";
   }
@@ -357,8 +358,9 @@ SortieReport HomeBaseCooperation::endSortie(const TraverseLog& sortie,
     for (size_t i = mid + gap; i < n; ++i) second.insert(sortie.entries[i].scan, c.poses[i]);
     const ScanAligner to_first(first, config_.closure_alignment);
     const ScanAligner to_second(second, config_.closure_alignment);
-    std::vector<PoseObservation> self = closuresAgainst(sortie, c.poses, to_first, mid, n);
-    const std::vector<PoseObservation> back = closuresAgainst(sortie, c.poses, to_second, 0, mid);
+    std::vector<PoseObservation> self = mapClosures(sortie, c.poses, to_first, config_, mid, n);
+    const std::vector<PoseObservation> back =
+        mapClosures(sortie, c.poses, to_second, config_, 0, mid);
     self.insert(self.end(), back.begin(), back.end());
     if (!self.empty())
       closure_note += " + " + std::to_string(self.size()) + " closures within the sortie";
@@ -484,46 +486,80 @@ std::vector<PoseObservation> manhattanHeadings(const TraverseLog& log,
   return out;
 }
 
-Eigen::Matrix2d HomeBaseCooperation::closureInformation(const AlignmentResult& a,
-                                                        const Eigen::Vector2d& at) const {
+namespace {
+
+// A closure's position information (map frame) from its alignment's, at `at`.
+Eigen::Matrix2d closureInformation(const AlignmentResult& a, const Eigen::Vector2d& at,
+                                   const CooperationConfig& config) {
   // The alignment's own information is far too confident (its points' errors are not
   // independent); only its shape is used: the strongest direction gets closure_sigma_xy.
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(positionInformation(a, at));
   const Eigen::Vector2d lambda = eig.eigenvalues();  // ascending
-  const double strong = 1.0 / (config_.closure_sigma_xy * config_.closure_sigma_xy);
+  const double strong = 1.0 / (config.closure_sigma_xy * config.closure_sigma_xy);
   if (!(lambda(1) > 0.0)) return Eigen::Matrix2d::Identity() * strong;
   const double ratio = std::max(lambda(0), 0.0) / lambda(1);
-  const double floor = std::pow(config_.closure_sigma_xy / config_.closure_max_sigma_m, 2);
+  const double floor = std::pow(config.closure_sigma_xy / config.closure_max_sigma_m, 2);
   const Eigen::Vector2d weak_dir = eig.eigenvectors().col(0),
                         strong_dir = eig.eigenvectors().col(1);
   return strong * (strong_dir * strong_dir.transpose() +
                    std::max(ratio, floor) * weak_dir * weak_dir.transpose());
 }
 
-std::vector<PoseObservation> HomeBaseCooperation::closuresAgainst(
-    const TraverseLog& sortie, const std::vector<Pose2>& corrected, const ScanAligner& aligner,
-    size_t from, size_t to) const {
+}  // namespace
+
+std::vector<PoseObservation> mapClosures(const TraverseLog& log,
+                                         const std::vector<Pose2>& corrected,
+                                         const ScanAligner& aligner,
+                                         const CooperationConfig& config, size_t from, size_t to,
+                                         const std::vector<Pose2>* estimate) {
+  const size_t n = log.entries.size();
+  if (corrected.size() != n || (estimate && estimate->size() != n))
+    throw std::invalid_argument("mapClosures: " + std::to_string(corrected.size()) + " and " +
+                                std::to_string(estimate ? estimate->size() : n) +
+                                " poses for a log of " + std::to_string(n) + " entries");
   std::vector<PoseObservation> out;
-  const size_t k = static_cast<size_t>(config_.closure_scans);
-  for (size_t begin = from; begin + k <= to; begin += static_cast<size_t>(config_.closure_stride)) {
-    const PlacedScans stretch(sortie, corrected, begin, begin + k);
-    const AlignmentResult a = aligner.align(stretch.pointers, Pose2());
-    if (!a.ok || a.inliers < config_.closure_min_inliers * a.points) continue;
-    // Measured at the map's origin (by the home base), not at the stretch: a sortie's drift
-    // turns it about where it began, so a right correction far out turns and shifts the
-    // stretch together and moves the origin little, where a turn without the shift it implies
-    // (the alignment's own heading error) moves the origin far. Seeds 1-12 of the building:
-    // wall_recall 0.841 and false_occupied_rate 0.0237 this way; at the stretch's middle,
-    // 0.796 and 0.0306 (0.792 and 0.0278 with closure_max_rad 0.03); about the home base's
-    // middle, 0.820 and 0.0283; closure_max_m 0.3 at the origin, 0.806 and 0.0296.
-    if (!movesWithin(a.correction, Pose2(), config_.closure_max_m, config_.closure_max_rad))
-      continue;
+  const size_t k = static_cast<size_t>(config.closure_scans);
+  std::vector<Pose2> anchored = corrected;
+  for (size_t begin = from; begin + k <= std::min(to, n);
+       begin += static_cast<size_t>(config.closure_stride)) {
+    const size_t mid = begin + k / 2;
+    // An alignment of the stretch placed at `poses` that fits: enough of its points on the
+    // map's obstacles, and moving the map's origin (by the home base) little. Measured at
+    // the origin, not at the stretch: a sortie's drift turns it about where it began, so a
+    // right correction far out turns and shifts the stretch together and moves the origin
+    // little, where a turn without the shift it implies (the alignment's own heading error)
+    // moves the origin far. Seeds 1-12 of the building: wall_recall 0.841 and
+    // false_occupied_rate 0.0237 this way; at the stretch's middle, 0.796 and 0.0306 (0.792
+    // and 0.0278 with closure_max_rad 0.03); about the home base's middle, 0.820 and 0.0283;
+    // closure_max_m 0.3 at the origin, 0.806 and 0.0296.
+    auto fit = [&](const std::vector<Pose2>& poses) {
+      const PlacedScans stretch(log, poses, begin, begin + k);
+      AlignmentResult a = aligner.align(stretch.pointers, Pose2());
+      a.ok = a.ok && a.inliers >= config.closure_min_inliers * a.points &&
+             movesWithin(a.correction, Pose2(), config.closure_max_m, config.closure_max_rad);
+      return a;
+    };
+    AlignmentResult a = fit(corrected);
+    Pose2 placed = corrected[mid];
+    if (estimate) {
+      // The stretch on its own odometry where the live estimate had its middle: the better
+      // fit of the two (the larger share of points on the map) is the closure.
+      const Pose2 frame = (*estimate)[mid] * log.entries[mid].scan.odometry.inverse();
+      for (size_t i = begin; i < begin + k; ++i) anchored[i] = frame * log.entries[i].scan.odometry;
+      const AlignmentResult b = fit(anchored);
+      if (b.ok && (!a.ok || b.inliers * a.points > a.inliers * b.points)) {
+        a = b;
+        placed = anchored[mid];
+      }
+    }
+    if (!a.ok) continue;
     PoseObservation o;
-    o.entry = begin + k / 2;
-    o.pose = a.correction * corrected[o.entry];
-    o.sigma_xy = config_.closure_sigma_xy;
-    o.sigma_theta = config_.closure_sigma_theta;
-    if (config_.closure_shape) o.xy_information = closureInformation(a, o.pose.translation());
+    o.entry = mid;
+    o.pose = a.correction * placed;
+    o.sigma_xy = config.closure_sigma_xy;
+    o.sigma_theta = config.closure_sigma_theta;
+    if (config.closure_shape)
+      o.xy_information = closureInformation(a, o.pose.translation(), config);
     out.push_back(o);
   }
   return out;

@@ -7,7 +7,6 @@
 #include <ceres/solver.h>
 
 #include <cmath>
-#include <cstdlib>
 #include <stdexcept>
 
 #include <opencv2/core/mat.hpp>
@@ -75,6 +74,35 @@ ScanAligner::ScanAligner(const OccupancyGrid& reference, const AlignmentConfig& 
   cv::distanceTransform(free_mask, field_, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
 }
 
+bool ScanAligner::behindSeenSurface(int ix, int iy) const {
+  const MapLimits& lim = reference_.limits();
+  const float d = field_.at<float>(iy, ix);
+  if (d > config_.robust_scale || ix < 1 || iy < 1 || ix + 1 >= lim.width || iy + 1 >= lim.height)
+    return false;
+  // Down the distance field to the nearest occupied cell, through the surface (at most a
+  // few cells thick), to the first cell past it: seen there means the surface was seen from
+  // that side, and the cell is behind it. Along a wall, past its mapped end, the walk runs
+  // into the wall's own cells or into cells nobody saw.
+  const double gx = field_.at<float>(iy, ix + 1) - field_.at<float>(iy, ix - 1);
+  const double gy = field_.at<float>(iy + 1, ix) - field_.at<float>(iy - 1, ix);
+  const double norm = std::hypot(gx, gy);
+  if (norm < 1e-6) return false;
+  const Eigen::Vector2d down = -lim.resolution * Eigen::Vector2d(gx, gy) / norm;
+  const Eigen::Vector2d from = lim.cellCenter(ix, iy);
+  bool in_surface = false;
+  for (double t = 0.5; t <= d + kMaxSurfaceCells; t += 0.5) {  // half-cell steps
+    const Eigen::Vector2d at = from + t * down;
+    const int x = lim.cellX(at.x()), y = lim.cellY(at.y());
+    if (!lim.contains(x, y)) return false;
+    if (reference_.state(x, y) == CellState::kOccupied) {
+      in_surface = true;
+    } else if (in_surface) {
+      return reference_.seen(x, y);
+    }
+  }
+  return false;
+}
+
 double ScanAligner::distance(const Eigen::Vector2d& q) const {
   const MapLimits& lim = reference_.limits();
   const int ix = lim.cellX(q.x()), iy = lim.cellY(q.y());
@@ -85,7 +113,8 @@ double ScanAligner::distance(const Eigen::Vector2d& q) const {
 std::vector<Eigen::Vector2d> ScanAligner::points(const std::vector<const RadialMap*>& scans,
                                                  const Pose2& guess,
                                                  std::vector<double>* weights) const {
-  // Obstacle points in the odometry frame; only those the reference has seen around.
+  // Obstacle points in the odometry frame; only those the reference can judge (see
+  // AlignmentConfig::seen_points_only).
   const MapLimits& lim = reference_.limits();
   std::vector<Eigen::Vector2d> out;
   for (const RadialMap* scan : scans)
@@ -97,7 +126,10 @@ std::vector<Eigen::Vector2d> ScanAligner::points(const std::vector<const RadialM
       const Eigen::Vector2d q = guess * p;
       const int ix = lim.cellX(q.x()), iy = lim.cellY(q.y());
       if (!lim.contains(ix, iy)) continue;
-      if (!reference_.seen(ix, iy) && field_.at<float>(iy, ix) > config_.robust_scale) continue;
+      if (!reference_.seen(ix, iy) &&
+          (config_.seen_points_only ? !behindSeenSurface(ix, iy)
+                                    : field_.at<float>(iy, ix) > config_.robust_scale))
+        continue;
       out.push_back(p);
       if (weights)
         weights->push_back(

@@ -28,7 +28,14 @@ struct AlignmentConfig {
   // fell from 0.61 to 0.38 deg; 0: every point alike.
   double range_exponent = 2.0;
   double weight_range = 1.5;  // m
-  void validate() const;      // throws std::invalid_argument naming the field
+  // Which points the reference judges. Off: every point in a cell it has seen or within
+  // robust_scale of an occupied cell. On: in a cell it has seen, or just behind a surface it
+  // saw from the other side (a stretch placed a little too far); not where it saw nothing:
+  // past the mapped end of a wall, the wall's continuation is pulled back onto the wall's
+  // last cells otherwise. (In the building, with exact odometry, each sortie going on into
+  // new ground was pulled back toward home: the far corridors were mapped about 1 % short.)
+  bool seen_points_only = false;
+  void validate() const;  // throws std::invalid_argument naming the field
 };
 
 struct AlignmentResult {
@@ -81,6 +88,10 @@ class ScanAligner {
                                       const Pose2& guess,
                                       std::vector<double>* weights = nullptr) const;
   double distance(const Eigen::Vector2d& map_point) const;  // cells; large off the map
+  // An unseen cell within robust_scale of an occupied one, behind a surface whose other
+  // side the reference saw (see points()).
+  bool behindSeenSurface(int ix, int iy) const;
+  static constexpr int kMaxSurfaceCells = 6;  // thickest surface walked through
   const OccupancyGrid& reference_;
   AlignmentConfig config_;
   cv::Mat field_;  // CV_32F distance to the nearest occupied cell (cells), rows = y

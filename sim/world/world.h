@@ -209,6 +209,9 @@ struct World {
     // CooperationConfig::closure_scans: radial maps per stretch of a sortie's correction (its
     // closures, its headings from the walls, its post gate)
     std::optional<int> closure_scans;
+    // AlignmentConfig::seen_points_only of the sorties' alignments to the shared map (their
+    // closures, post gate and rival check)
+    std::optional<bool> closure_seen_points;
     // FrontierConfig::look_again_gain: never-observed cells a frontier whose goal was reached
     // must still have to be gone to once more, for a full turn there (0: off)
     std::optional<int> look_again_gain;

@@ -238,6 +238,7 @@ World parseWorld(const std::string& text, const std::string& file) {
                           "manhattan_sigma_deg",
                           "wall_heading_gain",
                           "closure_scans",
+                          "closure_seen_points",
                           "look_again_gain"});
       World::Exploration& e = w.exploration;
       auto metres = [&](const char* key, double lo, double hi, const char* what,
@@ -266,6 +267,8 @@ World parseWorld(const std::string& text, const std::string& file) {
         e.retry_frontiers = (*mission)["retry_frontiers"].asBool();
       if (mission->has("shaped_closures"))
         e.shaped_closures = (*mission)["shaped_closures"].asBool();
+      if (mission->has("closure_seen_points"))
+        e.closure_seen_points = (*mission)["closure_seen_points"].asBool();
       if (mission->has("bump_away")) e.bump_away = (*mission)["bump_away"].asBool();
       if (mission->has("closure_scans"))
         e.closure_scans = (*mission)["closure_scans"].asInt(1, 100);

@@ -1,6 +1,7 @@
 // The cooperation layer's guards: bad configuration, a sortie without radial maps, and a
 // sortie that cannot be localized are reported and nothing reaches the shared map; the post
-// gate finds the stretches of a corrected traverse that the shared map says are misplaced.
+// gate finds the stretches of a corrected traverse that the shared map says are misplaced;
+// closures to the shared map are found from the live estimate where the correction is far off.
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -175,15 +176,21 @@ std::vector<test::Segment> corridor() {
   return w;
 }
 
-TEST(CooperationTest, PostGateFlagsTheStretchesTheMapSaysAreMisplaced) {
-  // The shared map knows the corridor, from scans at true poses looking four ways.
-  const std::vector<test::Segment> world = corridor();
+// The shared map of the corridor, from scans at true poses along it looking four ways.
+OccupancyGrid corridorMap(const std::vector<test::Segment>& world) {
   OccupancyGrid map(MapLimits::covering({-1, -1}, {13, 3}, 0.05), OccupancyConfig{});
   for (int i = 0; i <= 70; ++i)
     for (const double heading : {0.0, M_PI, M_PI / 2, -M_PI / 2}) {
       const Pose2 pose(0.5 + 0.1 * i, 1.0, heading);
       map.insert(test::cameraScan(pose, world), pose);
     }
+  return map;
+}
+
+TEST(CooperationTest, PostGateFlagsTheStretchesTheMapSaysAreMisplaced) {
+  // The shared map knows the corridor.
+  const std::vector<test::Segment> world = corridor();
+  const OccupancyGrid map = corridorMap(world);
   const ScanAligner aligner(map, AlignmentConfig{});
   // A traverse east along the corridor, 0.1 m a scan. Its correction placed entries 30-59
   // (x 3.5 - 6.4 m) 0.25 m too far north, the rest where they were. (Much farther off, a
@@ -223,6 +230,47 @@ TEST(CooperationTest, PostGateFlagsTheStretchesTheMapSaysAreMisplaced) {
   for (int i = 30; i < 60; ++i) nudged[i] = Pose2(poses[i].x, poses[i].y - 0.15, poses[i].theta);
   for (const bool f : misplacedEntries(log, nudged, aligner, 6, 0.7, 0.15, M_PI)) EXPECT_FALSE(f);
   EXPECT_THROW(misplacedEntries(log, {}, aligner, 6, 0.7, 0.15, M_PI), std::invalid_argument);
+}
+
+TEST(CooperationTest, ClosuresAlsoTryEachStretchWhereTheLiveEstimateHadIt) {
+  // The shared map knows the corridor. A traverse east along it, on an odometry chain of its
+  // own frame; the home-base correction left it 0.6 m north of the truth (too far for an
+  // alignment to come back from), the live estimate 5 cm and half a degree off.
+  const std::vector<test::Segment> world = corridor();
+  const OccupancyGrid map = corridorMap(world);
+  const ScanAligner aligner(map, AlignmentConfig{});
+  const Pose2 chain_frame(3.0, -2.0, 0.7);  // where the odometry chain has the map's origin
+  TraverseLog log;
+  log.robot = "jose";
+  std::vector<Pose2> truth, corrected, estimate;
+  for (int i = 0; i < 90; ++i) {
+    truth.emplace_back(0.5 + 0.1 * i, 1.0, 0.3 * std::sin(0.2 * i));
+    TraverseEntry e;
+    e.scan = test::cameraScan(truth.back(), world);
+    e.scan.odometry = chain_frame * truth.back();
+    e.scan.stamp = i / 3.0;
+    log.entries.push_back(e);
+    corrected.push_back(Pose2(0.0, 0.6, 0.0) * truth.back());
+    estimate.push_back(Pose2(0.05, -0.03, 0.5 * M_PI / 180.0) * truth.back());
+  }
+  CooperationConfig config;
+  EXPECT_TRUE(mapClosures(log, corrected, aligner, config, 0, 90).empty());
+  const std::vector<PoseObservation> closures =
+      mapClosures(log, corrected, aligner, config, 0, 90, &estimate);
+  EXPECT_GE(closures.size(), 8u);
+  for (const PoseObservation& o : closures) {
+    const Pose2& t = truth[o.entry];
+    EXPECT_LT((o.pose.translation() - t.translation()).norm(), 0.08) << "entry " << o.entry;
+    EXPECT_LT(std::abs(wrapAngle(o.pose.theta - t.theta)), 1.0 * M_PI / 180.0)
+        << "entry " << o.entry;
+  }
+  // Where the correction is right, the closures stay there (a stretch of six aligns within a
+  // few centimetres).
+  for (const PoseObservation& o : mapClosures(log, truth, aligner, config, 0, 90, &estimate))
+    EXPECT_LT((o.pose.translation() - truth[o.entry].translation()).norm(), 0.08);
+  const std::vector<Pose2> short_estimate(estimate.begin(), estimate.end() - 1);
+  EXPECT_THROW(mapClosures(log, corrected, aligner, config, 0, 90, &short_estimate),
+               std::invalid_argument);
 }
 
 TEST(CooperationTest, WallsGiveTheHeadingWhereTheEstimateHasDrifted) {

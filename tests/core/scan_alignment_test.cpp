@@ -18,8 +18,10 @@ namespace {
 using test::castRay;
 using test::Segment;
 
-// The walls as a reference grid (one insert of dense exact rays from a few poses).
-OccupancyGrid referenceOf(const std::vector<Segment>& walls, const std::vector<Pose2>& from) {
+// The walls as a reference grid (three inserts of dense exact rays, hits within max_range m,
+// from each of a few poses).
+OccupancyGrid referenceOf(const std::vector<Segment>& walls, const std::vector<Pose2>& from,
+                          double max_range = 8.0) {
   OccupancyGrid grid(MapLimits::covering({-6, -4}, {6, 4}, 0.05), OccupancyConfig{});
   for (const Pose2& p : from) {
     RadialMap scan;
@@ -28,7 +30,7 @@ OccupancyGrid referenceOf(const std::vector<Segment>& walls, const std::vector<P
       RadialReading r;
       r.bearing = -M_PI + i * M_PI / 360.0;
       const double a = p.theta + r.bearing;
-      r.range = castRay(walls, p.translation(), {std::cos(a), std::sin(a)}, 8.0);
+      r.range = castRay(walls, p.translation(), {std::cos(a), std::sin(a)}, max_range);
       if (r.range < 0.0) continue;
       r.kind = RadialKind::kHit;
       r.sigma = 0.005;
@@ -103,6 +105,33 @@ TEST(ScanAlignmentTest, ACornerPinsBothOffsets) {
   EXPECT_NEAR(a.correction.y, 0.0, 0.02);
   const Pinned p = pinned(a, {0.25, 0.0});
   EXPECT_GT(p.weak, 0.05 * p.strong) << p.weak << " vs " << p.strong;
+}
+
+TEST(ScanAlignmentTest, WithSeenPointsOnlyWallsGoingOnPastTheMappedPartAreNotPulledBack) {
+  // The reference saw the corridor (a door in its north wall at x = -0.8..0) only up to
+  // x = 1.4 (poses up to x = -1, hits within 2.5 m); the views see it from x = -1.5 on,
+  // 3.5 m ahead. The door's jambs pin the offset along the corridor; the walls past the
+  // mapped part say nothing about it. An aligner that counted those points against the
+  // last mapped wall cells pulled every stretch going on into new ground back (a sortie
+  // into new ground was shrunk toward home, about 1 % in the building).
+  const std::vector<Segment> corridor = {
+      {{-6, -0.975}, {6, -0.975}}, {{-6, 1.025}, {-0.8, 1.025}}, {{0, 1.025}, {6, 1.025}}};
+  std::vector<Pose2> along;
+  for (double x = -5.5; x <= -0.9; x += 0.5) along.emplace_back(x, 0.0, 0.0);
+  const OccupancyGrid ref = referenceOf(corridor, along, 2.5);
+  const std::vector<RadialMap> views = {viewOf(corridor, {-1.5, 0, 0.3}, 5),
+                                        viewOf(corridor, {-1.0, 0, -0.3}, 6)};
+  const std::vector<const RadialMap*> scans = {&views[0], &views[1]};
+  AlignmentConfig config;
+  config.seen_points_only = true;
+  const AlignmentResult a = alignScans(scans, ref, Pose2(), config);
+  ASSERT_TRUE(a.ok) << a.message;
+  EXPECT_NEAR(a.correction.x, 0.0, 0.01);
+  EXPECT_NEAR(a.correction.y, 0.0, 0.01);
+  // Counting every point within robust_scale of the map's obstacles, it is pulled back.
+  const AlignmentResult near = alignScans(scans, ref, Pose2());
+  ASSERT_TRUE(near.ok) << near.message;
+  EXPECT_LT(near.correction.x, -0.05);
 }
 
 }  // namespace

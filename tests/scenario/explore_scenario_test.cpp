@@ -72,6 +72,7 @@ TEST(ExploreScenarioTest, TheBuildingsMissionSettingsApplyUnlessTheCommandLineSa
   EXPECT_EQ(r.mission_settings->manhattan_sigma_deg, 0.6);
   EXPECT_EQ(r.mission_settings->wall_heading_gain, 0.5);
   EXPECT_EQ(r.mission_settings->closure_scans, 18);
+  EXPECT_TRUE(r.mission_settings->closure_seen_points);
   EXPECT_EQ(r.mission_settings->look_again_gain, 0);
   o.safety_distance = 0.6;
   o.recent_hits_s = 5.0;
@@ -119,6 +120,7 @@ TEST(ExploreScenarioTest, TheBuildingsMissionSettingsApplyUnlessTheCommandLineSa
   EXPECT_EQ(r.mission_settings->manhattan_sigma_deg, 0.0);
   EXPECT_EQ(r.mission_settings->wall_heading_gain, 0.0);
   EXPECT_EQ(r.mission_settings->closure_scans, CooperationConfig{}.closure_scans);
+  EXPECT_FALSE(r.mission_settings->closure_seen_points);
   EXPECT_EQ(r.mission_settings->look_again_gain, 0);
   o.planning_margin = 0.3;
   o.preferred_margin = 0.25;
@@ -127,6 +129,7 @@ TEST(ExploreScenarioTest, TheBuildingsMissionSettingsApplyUnlessTheCommandLineSa
   o.manhattan_sigma_deg = 0.6;
   o.wall_heading_gain = 0.3;
   o.closure_scans = 12;
+  o.closure_seen_points = true;
   o.look_again_gain = 40;
   r = runWorld(o);
   EXPECT_EQ(r.mission_settings->planning_margin, 0.3);
@@ -136,6 +139,7 @@ TEST(ExploreScenarioTest, TheBuildingsMissionSettingsApplyUnlessTheCommandLineSa
   EXPECT_EQ(r.mission_settings->manhattan_sigma_deg, 0.6);
   EXPECT_EQ(r.mission_settings->wall_heading_gain, 0.3);
   EXPECT_EQ(r.mission_settings->closure_scans, 12);
+  EXPECT_TRUE(r.mission_settings->closure_seen_points);
   EXPECT_EQ(r.mission_settings->look_again_gain, 40);
   o.closures = "some";
   EXPECT_THROW(runWorld(o), std::invalid_argument);

@@ -91,7 +91,7 @@ TEST(WorldLoaderTest, MissionSettingsOfABuildingAreReadAndChecked) {
       "calibrate_distance_scale: false, passage_width: 1.2, sortie_budget_m: 30, "
       "planning_margin: 0.2, preferred_margin: 0.3, closures: both, post_gate_m: 0.25, "
       "recent_hits_s: 8, manhattan_sigma_deg: 0.6, wall_heading_gain: 0.5, closure_scans: 12, "
-      "look_again_gain: 30}\n" +
+      "closure_seen_points: true, look_again_gain: 30}\n" +
           minimal(),
       "w.yaml");
   EXPECT_EQ(w.mission, "explore");
@@ -116,6 +116,7 @@ TEST(WorldLoaderTest, MissionSettingsOfABuildingAreReadAndChecked) {
   EXPECT_EQ(w.exploration.manhattan_sigma_deg, 0.6);
   EXPECT_EQ(w.exploration.wall_heading_gain, 0.5);
   EXPECT_EQ(w.exploration.closure_scans, 12);
+  EXPECT_EQ(w.exploration.closure_seen_points, true);
   EXPECT_EQ(w.exploration.look_again_gain, 30);
   EXPECT_FALSE(parseWorld(minimal(), "w.yaml").exploration.safety_distance.has_value());
   const World building = loadWorld(kSrc + "/worlds/lab_corridor.yaml");
