@@ -126,7 +126,17 @@ struct MissionConfig {
   double claimed_return_factor = 0.5;
   double min_sortie_m = 3.0;
   FrontierConfig frontiers;
-  PlannerConfig planner;
+  // Bounded by sampling iterations, not by time: a run must not depend on how busy the
+  // machine is. (With the 1 s budget alone, a query of the building that took 240k iterations,
+  // 0.8 s on an idle machine, ran out of time with three runs on two cores, and the same
+  // seed gave another run.) The time budget is only a backstop: 1M iterations, four times
+  // the most the building's runs needed, take about 3.5 s here.
+  PlannerConfig planner = [] {
+    PlannerConfig p;
+    p.max_iterations = 1'000'000;
+    p.time_budget = 60.0;
+    return p;
+  }();
   PlanningMapConfig planning;
   RouteConfig route;
   void validate() const;  // throws std::invalid_argument naming the field

@@ -39,6 +39,16 @@ OccupancyGrid lookedAround(const Pose2& at) {
   return map;
 }
 
+TEST(MissionTest, ItsPlannerIsBoundedByIterationsNotByTheClock) {
+  // The same seed must give the same run however busy the machine: every query the planner
+  // gets ends at its solution or at the iteration cap, long before the time backstop (a
+  // RRTConnect iteration takes about 3.5 us on the CI machine).
+  const MissionConfig c;
+  EXPECT_GT(c.planner.max_iterations, 0u);
+  EXPECT_GE(c.planner.time_budget, 10.0 * 3.5e-6 * static_cast<double>(c.planner.max_iterations))
+      << "the time backstop would bind before the iteration cap on a machine 10x slower";
+}
+
 TEST(MissionTest, StopsForGoodAfterTooManyBumpsInASortie) {
   const Pose2 home(2.0, 3.0, 0.0);
   const OccupancyGrid map = lookedAround(Pose2(1.0, 3.0, 0.0));  // the robot 1 m into it
