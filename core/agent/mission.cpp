@@ -39,6 +39,7 @@ void MissionConfig::validate() const {
   positive("look_from_m", look_from_m);
   positive("bump_radius", bump_radius);
   positive("max_home_detour", max_home_detour);
+  positive("home_retry_s", home_retry_s);
   // field, whether its value is good, what is expected, the value
   auto require = [](const char* field, bool ok, const char* expected, double v) {
     if (!ok)
@@ -107,6 +108,7 @@ MissionAgent::MissionAgent(const Pose2& home, const MissionConfig& config)
 
 void MissionAgent::startRoute(std::vector<Waypoint> route, double) {
   follower_ = std::make_unique<RouteFollower>(std::move(route), config_.route);
+  home_retry_at_ = -1.0;  // a new route ends any wait
 }
 
 MotionCommand MissionAgent::slowed(MotionCommand cmd) const {
@@ -238,9 +240,15 @@ void MissionAgent::goHome(double now, const Pose2& odometry, const OccupancyGrid
     path_ = plan.path;
     if (step_off) path_.waypoints.insert(path_.waypoints.begin(), odometry.translation());
     startRoute(routeOf(path_.waypoints), now);
-  } else {
+  } else if ((home - odometry.translation()).norm() <= config_.look_from_m) {
     path_ = PlannedPath{};
     startRoute({{target_.translation(), false, 0.0, 0.0}}, now);  // straight: nothing better
+  } else {
+    // No way home in the map now: never straight through what it shows; wait, plan again.
+    path_ = PlannedPath{};
+    follower_.reset();
+    home_retry_at_ = now + config_.home_retry_s;
+    last_event_ = "no way home in the map: waiting to plan again";
   }
 }
 
@@ -495,11 +503,12 @@ MotionCommand MissionAgent::update(double now, const Pose2& odometry, const Occu
       return last_command_ = slowed(follower_->update(odometry, now));
     }
     case MissionPhase::kReturn: {
-      if (plan_home_) {
+      if (plan_home_ || (home_retry_at_ >= 0.0 && now >= home_retry_at_)) {
         plan_home_ = false;
         goHome(now, odometry, map);
         return last_command_ = MotionCommand::stop();
       }
+      if (!follower_) return last_command_ = MotionCommand::stop();  // waiting to plan again
       const bool driving = last_command_.linear > 0.0;
       if (latest && driving && obstacleAhead(*latest)) {
         ++safety_stops_;

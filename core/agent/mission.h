@@ -32,6 +32,10 @@ struct MissionConfig {
   // places it has never seen while its odometry drifts. Else it drives to the free cell it can
   // reach nearest home and plans again from there.
   double max_home_detour = 2.0;
+  // With no way home in the map (a person in the corridor, say), a robot farther than
+  // look_from_m from home stops and plans again after this long; it drove straight at home
+  // before, and in the building once into a mapped wall too close for the cameras to see.
+  double home_retry_s = 2.0;  // s
   // When no frontier goal is left and some failed this sortie (or had no way to them), after
   // at least min_sortie_m: home to share and try them again next sortie (the imported map is
   // another), rather than end exploration. Goals reached are then remembered for good: what
@@ -271,6 +275,7 @@ class MissionAgent {
   // A teammate holds the passage ahead: wait for it (passage_width).
   bool passageHeld(const Pose2& pose, const OccupancyGrid& map) const;
   double passage_wait_since_ = -1.0;  // waiting for a passage since then
+  double home_retry_at_ = -1.0;       // no way home: plan again then
   double passage_next_ = -1.0;        // after a wait that timed out: no waiting until then
   int passage_waits_ = 0;
   double travelled_ = 0.0;

@@ -49,6 +49,59 @@ TEST(MissionTest, ItsPlannerIsBoundedByIterationsNotByTheClock) {
       << "the time backstop would bind before the iteration cap on a machine 10x slower";
 }
 
+// With no way home in the map (a wall across it, as a person standing in a corridor makes),
+// a robot away from home stops and plans again later; it used to drive straight at home,
+// through what the map showed. When the way opens, it goes.
+TEST(MissionTest, WithNoWayHomeItWaitsAndPlansAgainRatherThanDriveStraight) {
+  const Pose2 home(1.0, 3.0, 0.0);
+  const OccupancyGrid open = lookedAround(home);
+  OccupancyGrid walled = open;
+  {
+    std::vector<int16_t> log_odds = walled.logOddsGrid().cells;
+    std::vector<uint8_t> seen = walled.seenGrid().cells;
+    const MapLimits& l = walled.limits();
+    for (int iy = 0; iy < l.height; ++iy)
+      for (int ix = l.cellX(2.5); ix <= l.cellX(2.6); ++ix) {
+        log_odds[l.index(ix, iy)] = 400;
+        seen[l.index(ix, iy)] = 1;
+      }
+    walled.assign(log_odds, seen);
+  }
+  MissionConfig c;
+  c.look_wait_s = 0.5;
+  c.look_turn_rate = 1.5;
+  c.budget_m = 1.0;
+  c.look_from_m = 1.0;
+  c.planner.seed = 3;
+  MissionAgent mission(home, c);
+  Pose2 pose = home;
+  const double dt = 0.05;
+  double t = 0.0;
+  for (; t < 60.0 && mission.phase() != MissionPhase::kExplore; t += dt) {
+    const MotionCommand cmd = mission.update(t, pose, open, nullptr);
+    pose = pose * Pose2(cmd.linear * dt, 0.0, cmd.angular * dt);
+  }
+  ASSERT_EQ(mission.phase(), MissionPhase::kExplore);
+  // Just beyond the wall, 1.95 m from home (more than look_from_m), nowhere 0.5 m nearer home
+  // to go to: the budget is spent.
+  pose = Pose2(2.95, 3.0, 0.0);
+  for (const double until = t + 1.5; t < until; t += dt) {
+    const MotionCommand cmd = mission.update(t, pose, walled, nullptr);
+    if (mission.phase() != MissionPhase::kReturn) continue;
+    EXPECT_EQ(cmd.linear, 0.0) << "at " << t << " s: " << mission.lastEvent();
+    EXPECT_EQ(cmd.angular, 0.0) << "at " << t << " s: " << mission.lastEvent();
+  }
+  ASSERT_EQ(mission.phase(), MissionPhase::kReturn);
+  EXPECT_NE(mission.lastEvent().find("no way home"), std::string::npos) << mission.lastEvent();
+  // The wall goes: within a few seconds the robot is on its way.
+  bool moving = false;
+  for (const double until = t + 5.0; t < until && !moving; t += dt) {
+    const MotionCommand cmd = mission.update(t, pose, open, nullptr);
+    moving = cmd.linear != 0.0 || cmd.angular != 0.0;
+  }
+  EXPECT_TRUE(moving) << mission.lastEvent();
+}
+
 TEST(MissionTest, StopsForGoodAfterTooManyBumpsInASortie) {
   const Pose2 home(2.0, 3.0, 0.0);
   const OccupancyGrid map = lookedAround(Pose2(1.0, 3.0, 0.0));  // the robot 1 m into it
