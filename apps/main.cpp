@@ -349,6 +349,11 @@ int main(int argc, char** argv) {
                    "truth (an oracle's choice; 0: all)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
+  cmd_remap
+      ->add_option("--oracle", remap.oracle,
+                   "Take this part of each pose from the ground truth and the rest from --poses, "
+                   "to see which part of the pose error costs the map: position or heading")
+      ->check(CLI::IsMember({"position", "heading"}));
   cmd_remap->add_option("--out", remap.out_dir,
                         "Folder for map.{pgm,yaml,png} and map_evaluation.png");
 
@@ -417,12 +422,20 @@ int main(int argc, char** argv) {
       const coopmap::MapMetrics& m = r.metrics;
       std::string robots;
       for (const std::string& name : r.robots) robots += (robots.empty() ? "" : ", ") + name;
+      const std::string placed = remap.oracle.empty() ? remap.poses + " poses"
+                                 : remap.oracle == "position"
+                                     ? "true positions with the " + remap.poses + " headings"
+                                     : remap.poses + " positions with the true headings";
       std::printf(
-          "%s: %zu radial maps (%s), %zu at their %s poses (%zu with no such pose, %zu too far "
-          "from the truth)\nwall_recall %.4f false_occupied_rate %.4f coverage %.4f\n"
+          "%s: %zu radial maps (%s), %zu at their %s (%zu with no such pose, %zu too far "
+          "from the truth",
+          remap.run_dir.c_str(), r.entries, robots.c_str(), r.used, placed.c_str(), r.without_pose,
+          r.too_far);
+      if (!remap.oracle.empty()) std::printf(", %zu with no true pose", r.without_truth);
+      std::printf(
+          ")\nwall_recall %.4f false_occupied_rate %.4f coverage %.4f\n"
           "false obstacles by cells to the nearest true one:",
-          remap.run_dir.c_str(), r.entries, robots.c_str(), r.used, remap.poses.c_str(),
-          r.without_pose, r.too_far, m.wall_recall, m.false_occupied_rate, m.coverage);
+          m.wall_recall, m.false_occupied_rate, m.coverage);
       for (int b = 0; b < coopmap::MapMetrics::kDistanceBands; ++b)
         std::printf(" %s: %.4f", coopmap::MapMetrics::kDistanceBandNames[b],
                     m.false_occupied_by_distance[b]);

@@ -35,6 +35,8 @@ RemapSummary runRemap(const RemapOptions& o) {
     throw std::invalid_argument(
         "--poses: expected logged, corrected, estimate, odometry or groundtruth, got '" + o.poses +
         "'");
+  if (!o.oracle.empty() && o.oracle != "position" && o.oracle != "heading")
+    throw std::invalid_argument("--oracle: expected position or heading, got '" + o.oracle + "'");
   if (!(o.max_error_m >= 0.0) || !std::isfinite(o.max_error_m))
     throw std::invalid_argument("--max-error: expected metres >= 0 (0: every radial map)");
   const sim::World world = sim::loadWorld(o.world_file);
@@ -75,7 +77,7 @@ RemapSummary runRemap(const RemapOptions& o) {
     };
     std::vector<StampedPose2> poses, truth_poses;
     if (o.poses != "logged") poses = trajectory(o.poses);
-    if (o.max_error_m > 0.0) truth_poses = trajectory("groundtruth");
+    if (o.max_error_m > 0.0 || !o.oracle.empty()) truth_poses = trajectory("groundtruth");
     for (const TraverseEntry& e : log.entries) {
       ++s.entries;
       const Pose2* pose = o.poses == "logged" ? &e.scan.odometry : poseAt(poses, e.scan.stamp);
@@ -83,14 +85,24 @@ RemapSummary runRemap(const RemapOptions& o) {
         ++s.without_pose;
         continue;
       }
-      if (o.max_error_m > 0.0) {
-        const Pose2* t = poseAt(truth_poses, e.scan.stamp);
-        if (!t || std::hypot(t->x - pose->x, t->y - pose->y) > o.max_error_m) {
-          ++s.too_far;
+      const Pose2* truth = truth_poses.empty() ? nullptr : poseAt(truth_poses, e.scan.stamp);
+      if (o.max_error_m > 0.0 &&
+          (!truth || std::hypot(truth->x - pose->x, truth->y - pose->y) > o.max_error_m)) {
+        ++s.too_far;
+        continue;
+      }
+      Pose2 placed_at = *pose;
+      if (!o.oracle.empty()) {
+        if (!truth) {
+          ++s.without_truth;
           continue;
         }
+        if (o.oracle == "position")
+          placed_at = Pose2(truth->x, truth->y, pose->theta);
+        else
+          placed_at.theta = truth->theta;
       }
-      placed.push_back({e.scan.stamp, &e.scan, *pose});
+      placed.push_back({e.scan.stamp, &e.scan, placed_at});
     }
   }
   std::stable_sort(placed.begin(), placed.end(),

@@ -20,14 +20,18 @@ struct RemapOptions {
   // > 0: only the radial maps whose pose is within this (m) of the ground truth, for an
   // oracle's choice of what to share
   double max_error_m = 0.0;
+  // "position" or "heading": that part of each pose from the ground truth, the rest from
+  // `poses` (which part of the pose error costs the map); "" (the default): none.
+  std::string oracle;
   std::string out_dir;  // if set: map.{pgm,yaml,png} and map_evaluation.png
 };
 
 struct RemapSummary {
   std::vector<std::string> robots;
-  size_t entries = 0;       // radial maps in the logs
-  size_t without_pose = 0;  // of them, with no pose of that stamp in the trajectory
-  size_t too_far = 0;       // of them, more than max_error_m from the ground truth
+  size_t entries = 0;        // radial maps in the logs
+  size_t without_pose = 0;   // of them, with no pose of that stamp in the trajectory
+  size_t too_far = 0;        // of them, more than max_error_m from the ground truth
+  size_t without_truth = 0;  // of them, with --oracle, with no ground-truth pose of that stamp
   size_t used = 0;
   MapMetrics metrics;  // against the world's true occupancy, as `coopmap run` scores
 };

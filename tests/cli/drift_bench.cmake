@@ -95,6 +95,49 @@ if(NOT CMAKE_MATCH_1 EQUAL CMAKE_MATCH_2 OR CMAKE_MATCH_1 LESS 3
    OR NOT EXISTS "${WORK_DIR}/remap/map_evaluation.png")
   message(FATAL_ERROR "coopmap remap: expected every radial map placed and the scores:\n${out}")
 endif()
+# The oracle's parts: "corrected" poses 1 m east of the truth (x is positive in the lab) are
+# fixed by true positions and not by true headings.
+file(MAKE_DIRECTORY "${WORK_DIR}/shifted")
+file(COPY "${log}" "${WORK_DIR}/run/trajectory_jose_groundtruth.tum" DESTINATION "${WORK_DIR}/shifted")
+file(STRINGS "${WORK_DIR}/run/trajectory_jose_groundtruth.tum" truth_lines)
+set(shifted "")
+foreach(line IN LISTS truth_lines)
+  if(line MATCHES "^([^ #]+) ([0-9]+)(\\.[0-9]+) (.*)$")
+    math(EXPR east "${CMAKE_MATCH_2} + 1")
+    string(APPEND shifted "${CMAKE_MATCH_1} ${east}${CMAKE_MATCH_3} ${CMAKE_MATCH_4}\n")
+  endif()
+endforeach()
+file(WRITE "${WORK_DIR}/shifted/trajectory_jose_corrected.tum" "${shifted}")
+foreach(oracle none position heading)
+  set(args "")
+  if(NOT oracle STREQUAL "none")
+    set(args --oracle ${oracle})
+  endif()
+  execute_process(COMMAND "${COOPMAP}" remap "${WORK_DIR}/shifted" --world "${SOURCE_DIR}/worlds/lab.yaml"
+                          ${args} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0 OR NOT out MATCHES "wall_recall (0\\.[0-9]+) false_occupied_rate (0\\.[0-9]+)")
+    message(FATAL_ERROR "coopmap remap --oracle ${oracle} failed (${rc}):\n${out}${err}")
+  endif()
+  set(scores_${oracle} "${CMAKE_MATCH_1} ${CMAKE_MATCH_2}")
+endforeach()
+if(NOT out MATCHES "at their corrected positions with the true headings")
+  message(FATAL_ERROR "coopmap remap --oracle heading does not say what it placed:\n${out}")
+endif()
+execute_process(COMMAND "${COOPMAP}" remap "${WORK_DIR}/run" --world "${SOURCE_DIR}/worlds/lab.yaml"
+                        --poses groundtruth OUTPUT_VARIABLE out)
+string(REGEX MATCH "wall_recall (0\\.[0-9]+) false_occupied_rate (0\\.[0-9]+)" found "${out}")
+set(scores_truth "${CMAKE_MATCH_1} ${CMAKE_MATCH_2}")
+if(NOT scores_position STREQUAL scores_truth OR NOT scores_heading STREQUAL scores_none
+   OR scores_none STREQUAL scores_truth)
+  message(FATAL_ERROR "remap's oracle took the wrong part of the pose: truth ${scores_truth}, "
+                      "1 m off ${scores_none}, true positions ${scores_position}, true headings "
+                      "${scores_heading}")
+endif()
+execute_process(COMMAND "${COOPMAP}" remap "${WORK_DIR}/shifted" --world "${SOURCE_DIR}/worlds/lab.yaml"
+                        --oracle speed RESULT_VARIABLE rc ERROR_VARIABLE err)
+if(rc EQUAL 0 OR NOT err MATCHES "--oracle: speed not in")
+  message(FATAL_ERROR "a bad --oracle was not reported clearly (${rc}):\n${err}")
+endif()
 # A run of one robot has no corrected traverses: the missing file is named.
 execute_process(COMMAND "${COOPMAP}" remap "${WORK_DIR}/run" --world "${SOURCE_DIR}/worlds/lab.yaml"
                 RESULT_VARIABLE rc ERROR_VARIABLE err)

@@ -1,0 +1,202 @@
+// The mission's way home: its planner bounded by iterations (the same seed, the same run),
+// no straight drive through the map when there is no way home, no long way round through
+// the unknown, and doors one robot at a time.
+#include <algorithm>
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "core/agent/mission.h"
+#include "tests/core/mission_test_maps.h"
+
+namespace coopmap {
+namespace {
+
+using mission_test::lookedAround;
+using mission_test::quickFirstSortie;
+
+TEST(MissionTest, ItsPlannerIsBoundedByIterationsNotByTheClock) {
+  // The same seed must give the same run however busy the machine: every query the planner
+  // gets ends at its solution or at the iteration cap, long before the time backstop (a
+  // RRTConnect iteration takes about 3.5 us on the CI machine).
+  const MissionConfig c;
+  EXPECT_GT(c.planner.max_iterations, 0u);
+  EXPECT_GE(c.planner.time_budget, 10.0 * 3.5e-6 * static_cast<double>(c.planner.max_iterations))
+      << "the time backstop would bind before the iteration cap on a machine 10x slower";
+}
+
+// With no way home in the map (a wall across it, as a person standing in a corridor makes),
+// a robot away from home stops and plans again later; it used to drive straight at home,
+// through what the map showed. When the way opens, it goes.
+TEST(MissionTest, WithNoWayHomeItWaitsAndPlansAgainRatherThanDriveStraight) {
+  const Pose2 home(1.0, 3.0, 0.0);
+  const OccupancyGrid open = lookedAround(home);
+  OccupancyGrid walled = open;
+  {
+    std::vector<int16_t> log_odds = walled.logOddsGrid().cells;
+    std::vector<uint8_t> seen = walled.seenGrid().cells;
+    const MapLimits& l = walled.limits();
+    for (int iy = 0; iy < l.height; ++iy)
+      for (int ix = l.cellX(2.5); ix <= l.cellX(2.6); ++ix) {
+        log_odds[l.index(ix, iy)] = 400;
+        seen[l.index(ix, iy)] = 1;
+      }
+    walled.assign(log_odds, seen);
+  }
+  MissionConfig c;
+  c.look_wait_s = 0.5;
+  c.look_turn_rate = 1.5;
+  c.budget_m = 1.0;
+  c.look_from_m = 1.0;
+  c.planner.seed = 3;
+  MissionAgent mission(home, c);
+  Pose2 pose = home;
+  const double dt = 0.05;
+  double t = 0.0;
+  for (; t < 60.0 && mission.phase() != MissionPhase::kExplore; t += dt) {
+    const MotionCommand cmd = mission.update(t, pose, open, nullptr);
+    pose = pose * Pose2(cmd.linear * dt, 0.0, cmd.angular * dt);
+  }
+  ASSERT_EQ(mission.phase(), MissionPhase::kExplore);
+  // Just beyond the wall, 1.95 m from home (more than look_from_m), nowhere 0.5 m nearer home
+  // to go to: the budget is spent.
+  pose = Pose2(2.95, 3.0, 0.0);
+  for (const double until = t + 1.5; t < until; t += dt) {
+    const MotionCommand cmd = mission.update(t, pose, walled, nullptr);
+    if (mission.phase() != MissionPhase::kReturn) continue;
+    EXPECT_EQ(cmd.linear, 0.0) << "at " << t << " s: " << mission.lastEvent();
+    EXPECT_EQ(cmd.angular, 0.0) << "at " << t << " s: " << mission.lastEvent();
+  }
+  ASSERT_EQ(mission.phase(), MissionPhase::kReturn);
+  EXPECT_NE(mission.lastEvent().find("no way home"), std::string::npos) << mission.lastEvent();
+  // The wall goes: within a few seconds the robot is on its way.
+  bool moving = false;
+  for (const double until = t + 5.0; t < until && !moving; t += dt) {
+    const MotionCommand cmd = mission.update(t, pose, open, nullptr);
+    moving = cmd.linear != 0.0 || cmd.angular != 0.0;
+  }
+  EXPECT_TRUE(moving) << mission.lastEvent();
+}
+
+// Seen free everywhere south of y = 6 m but for a wall x in [2.5, 2.6] m from the south edge
+// to y = 6; nothing seen north of y = 6. The only way round the wall is through the unknown.
+OccupancyGrid wallWithTheWayRoundUnknown() {
+  const MapLimits lim = MapLimits::covering({0.0, 0.0}, {8.0, 8.0}, 0.05);
+  OccupancyGrid map(lim, OccupancyConfig{});
+  std::vector<int16_t> lo(lim.size(), 0);
+  std::vector<uint8_t> seen(lim.size(), 0);
+  for (int iy = 0; iy < lim.height; ++iy)
+    for (int ix = 0; ix < lim.width; ++ix) {
+      const Eigen::Vector2d c = lim.cellCenter(ix, iy);
+      if (c.y() > 6.0) continue;
+      seen[lim.index(ix, iy)] = 1;
+      lo[lim.index(ix, iy)] = c.x() > 2.5 && c.x() < 2.6 ? 500 : -500;
+    }
+  map.assign(lo, seen);
+  return map;
+}
+
+// Runs a mission whose first sortie ends at once, carried to (3.5, 3) east of the wall, home
+// at (2, 3) west of it. Returns, for its way home east of the wall: the farthest north it
+// went, and the nearest it came to home.
+std::pair<double, double> wayHome(double max_home_detour) {
+  const Pose2 home(2.0, 3.0, 0.0);
+  const OccupancyGrid map = wallWithTheWayRoundUnknown();
+  MissionConfig c = quickFirstSortie();
+  c.max_home_detour = max_home_detour;
+  MissionAgent mission(home, c);
+  Pose2 pose = home;
+  const double dt = 0.05;
+  double north = 0.0, nearest = 1e9;
+  for (int step = 0; step < 40000 && mission.phase() != MissionPhase::kAtHome; ++step) {
+    const MissionPhase before = mission.phase();
+    const MotionCommand cmd = mission.update(step * dt, pose, map, nullptr);
+    if (before == MissionPhase::kLookAtHome && mission.phase() == MissionPhase::kExplore)
+      pose = Pose2(3.5, 3.0, 0.0);  // carried east of the wall
+    pose = pose * Pose2(cmd.linear * dt, 0.0, cmd.angular * dt);
+    if (mission.phase() == MissionPhase::kReturn && pose.x > 2.6) {
+      north = std::max(north, pose.y);
+      nearest = std::min(nearest, (pose.translation() - home.translation()).norm());
+    }
+  }
+  return {north, nearest};
+}
+
+TEST(MissionTest, DoesNotGoHomeTheLongWayRoundThroughTheUnknown) {
+  // Home is 1.5 m away behind a wall; round it through the unknown is some 8 m. A drifting
+  // robot must not drive that far through places it has never seen (round a corridor loop a
+  // robot drove 60 m so and came home 6.7 m off): it goes as near home as the free space goes.
+  const auto [north, nearest] = wayHome(2.0);
+  EXPECT_LT(north, 5.0) << "went round through the unknown";
+  EXPECT_LT(nearest, 1.0) << "did not come to the wall by home";
+  // Allowed any detour, it does go round: the bound is what keeps it out.
+  EXPECT_GT(wayHome(100.0).first, 6.0);
+}
+
+// A wall at x 2.5-2.6 with a door 0.9 m wide at y 2.55-3.45; everything seen and free else.
+OccupancyGrid wallWithADoor() {
+  const MapLimits lim = MapLimits::covering({0.0, 0.0}, {8.0, 6.0}, 0.05);
+  OccupancyGrid map(lim, OccupancyConfig{});
+  std::vector<int16_t> lo(lim.size(), -500);
+  std::vector<uint8_t> seen(lim.size(), 1);
+  for (int iy = 0; iy < lim.height; ++iy)
+    for (int ix = 0; ix < lim.width; ++ix) {
+      const Eigen::Vector2d c = lim.cellCenter(ix, iy);
+      if (c.x() > 2.5 && c.x() < 2.6 && (c.y() < 2.55 || c.y() > 3.45)) lo[lim.index(ix, iy)] = 500;
+    }
+  map.assign(lo, seen);
+  return map;
+}
+
+// A robot on its way home west through the door, a teammate standing just beyond it
+// (nearer the door) for the first `hold_s` of the way home. Returns the robot's least x
+// while the teammate stands there, and its least x by the end.
+std::pair<double, double> throughTheDoor(double passage_width, double hold_s,
+                                         int* waits = nullptr) {
+  const Pose2 home(1.0, 3.0, 0.0);
+  const OccupancyGrid map = wallWithADoor();
+  MissionConfig c = quickFirstSortie();
+  c.passage_width = passage_width;
+  MissionAgent mission(home, c);
+  Pose2 pose = home;
+  const double dt = 0.05;
+  double held = 1e9, least = 1e9, return_start = -1.0;
+  for (int step = 0; step < 20000 && mission.phase() != MissionPhase::kAtHome; ++step) {
+    const double now = step * dt;
+    const MissionPhase before = mission.phase();
+    if (before == MissionPhase::kReturn && return_start < 0.0) return_start = now;
+    const bool holding = return_start >= 0.0 && now - return_start < hold_s;
+    // 1.05 m from the door's middle, 0.9 m off the way along y = 3: no teammate-ahead stop.
+    mission.setTeammates({holding ? Eigen::Vector2d(2.0, 3.9) : Eigen::Vector2d(7.5, 5.5)}, false);
+    const MotionCommand cmd = mission.update(now, pose, map, nullptr);
+    if (before == MissionPhase::kLookAtHome && mission.phase() == MissionPhase::kExplore)
+      pose = Pose2(4.5, 3.0, 0.0);  // carried east of the wall
+    pose = pose * Pose2(cmd.linear * dt, 0.0, cmd.angular * dt);
+    if (return_start >= 0.0) {
+      least = std::min(least, pose.x);
+      if (holding) held = std::min(held, pose.x);
+    }
+  }
+  if (waits) *waits = mission.passageWaits();
+  return {held, least};
+}
+
+TEST(MissionTest, WaitsAtADoorWhileATeammateNearerToItGoesThrough) {
+  int waits = 0;
+  const auto [held, least] = throughTheDoor(1.2, 15.0, &waits);
+  EXPECT_GT(held, 2.6 + 0.178) << "entered the door while the teammate stood at it";
+  EXPECT_LT(least, 1.5) << "did not go through once the teammate had gone";
+  EXPECT_GE(waits, 1);
+  // Off, the same robot goes through with the teammate there.
+  const auto [held_off, least_off] = throughTheDoor(0.0, 15.0);
+  EXPECT_LT(held_off, 2.4);
+  EXPECT_LT(least_off, 1.5);
+  // It waits at most passage_wait_s (20 s) for a teammate that stays.
+  EXPECT_LT(throughTheDoor(1.2, 1e9).second, 1.5) << "waited for good";
+}
+
+}  // namespace
+}  // namespace coopmap
