@@ -215,6 +215,7 @@ void MissionAgent::goHome(double now, const Pose2& odometry, const OccupancyGrid
   phase_ = MissionPhase::kReturn;
   has_goal_ = false;
   plan_home_at_end_ = false;
+  home_margin_ = -1.0;
   // On a blocked cell (backed off from a bump into what it has just drawn): step off to the
   // nearest free cell first, and plan from there.
   const PlanningMap planning = planningMap(map, false);
@@ -236,10 +237,26 @@ void MissionAgent::goHome(double now, const Pose2& odometry, const OccupancyGrid
       if (plan.solved()) plan_home_at_end_ = true;
     }
   }
+  bool squeezed = false;
+  if (!plan.solved() && (home - odometry.translation()).norm() > config_.look_from_m) {
+    // No way with the margin: with the least one that keeps the body off every blocked cell.
+    const double least = std::sqrt(2.0) * map.limits().resolution;
+    if (least < config_.planning.margin) {
+      const PlanningMap tight = planningMap(map, false, true, least);
+      if (tight.freeAt(from.translation())) {
+        plan = planner_.plan(tight, from, home);
+        squeezed = plan.solved();
+      }
+    }
+  }
   if (plan.solved()) {
     path_ = plan.path;
     if (step_off) path_.waypoints.insert(path_.waypoints.begin(), odometry.translation());
     startRoute(routeOf(path_.waypoints), now);
+    if (squeezed) {
+      home_margin_ = std::sqrt(2.0) * map.limits().resolution;
+      last_event_ = "no way home with the planning margin: going with the least";
+    }
   } else if ((home - odometry.translation()).norm() <= config_.look_from_m) {
     path_ = PlannedPath{};
     startRoute({{target_.translation(), false, 0.0, 0.0}}, now);  // straight: nothing better
@@ -516,7 +533,7 @@ MotionCommand MissionAgent::update(double now, const Pose2& odometry, const Occu
         return last_command_ = MotionCommand::stop();
       }
       if (freshHitOnWay(odometry, fresh) &&
-          firstBlockedSegment(wayAhead(odometry), planningMap(map, false))) {
+          firstBlockedSegment(wayAhead(odometry), planningMap(map, false, true, home_margin_))) {
         last_event_ = "way home blocked: replanned";
         goHome(now, odometry, map);
         return last_command_ = MotionCommand::stop();

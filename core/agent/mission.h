@@ -32,9 +32,13 @@ struct MissionConfig {
   // places it has never seen while its odometry drifts. Else it drives to the free cell it can
   // reach nearest home and plans again from there.
   double max_home_detour = 2.0;
-  // With no way home in the map (a person in the corridor, say), a robot farther than
-  // look_from_m from home stops and plans again after this long; it drove straight at home
-  // before, and in the building once into a mapped wall too close for the cameras to see.
+  // With no way home in the map, a robot farther than look_from_m from home first plans with
+  // the least margin that still keeps its body off every blocked cell (sqrt(2) * resolution,
+  // if planning.margin is more): a door drawn narrower than it is by the smear of its jambs
+  // and the estimate's offset (the building's seeds 1 and 3: the lab door 0.5 m wide in the
+  // robot's map) has room for the body without the margin. With no way even so (a person in
+  // the corridor, say), it stops and plans again after home_retry_s; it drove straight at
+  // home before, and in the building once into a mapped wall too close for the cameras to see.
   double home_retry_s = 2.0;  // s
   // When no frontier goal is left and some failed this sortie (or had no way to them), after
   // at least min_sortie_m: home to share and try them again next sortie (the imported map is
@@ -202,7 +206,9 @@ class MissionAgent {
   void startRoute(std::vector<Waypoint> route, double now);
   // With `recent`, what the cameras just saw blocks too (recent_hits_s), but for what is so
   // near the robot that it could not start (that is the safety stop's and the bumpers').
-  PlanningMap planningMap(const OccupancyGrid& map, bool allow_unknown, bool recent = true) const;
+  // `margin`: beyond the robot's radius, instead of planning.margin (< 0: planning.margin).
+  PlanningMap planningMap(const OccupancyGrid& map, bool allow_unknown, bool recent = true,
+                          double margin = -1.0) const;
   std::vector<Eigen::Vector2d> bumps_;  // where the bumpers touched something this sortie
   struct RecentHit {
     double t;
@@ -276,6 +282,7 @@ class MissionAgent {
   bool passageHeld(const Pose2& pose, const OccupancyGrid& map) const;
   double passage_wait_since_ = -1.0;  // waiting for a passage since then
   double home_retry_at_ = -1.0;       // no way home: plan again then
+  double home_margin_ = -1.0;         // the way home's margin, when not planning.margin (else < 0)
   double passage_next_ = -1.0;        // after a wait that timed out: no waiting until then
   int passage_waits_ = 0;
   double travelled_ = 0.0;

@@ -37,8 +37,8 @@ bool MissionAgent::nearWay(const std::vector<Eigen::Vector2d>& way, const Eigen:
   return false;
 }
 
-PlanningMap MissionAgent::planningMap(const OccupancyGrid& map, bool allow_unknown,
-                                      bool recent) const {
+PlanningMap MissionAgent::planningMap(const OccupancyGrid& map, bool allow_unknown, bool recent,
+                                      double margin) const {
   // Where the robot has been is free though the cameras never saw it (they never see beneath
   // the robot), or saw a weak obstacle there (a stereo mismatch). Not where they saw an
   // obstacle again and again: the estimate drifts, so "where it has been" can lie on a table
@@ -87,6 +87,7 @@ PlanningMap MissionAgent::planningMap(const OccupancyGrid& map, bool allow_unkno
     fillDisc(states, p, config_.team_radius, CellState::kOccupied);
   PlanningMapConfig c = config_.planning;
   c.allow_unknown = allow_unknown;
+  if (margin >= 0.0) c.margin = margin;
   return PlanningMap(states, c);
 }
 

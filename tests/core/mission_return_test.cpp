@@ -2,6 +2,7 @@
 // no straight drive through the map when there is no way home, no long way round through
 // the unknown, and doors one robot at a time.
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -136,8 +137,9 @@ TEST(MissionTest, DoesNotGoHomeTheLongWayRoundThroughTheUnknown) {
   EXPECT_GT(wayHome(100.0).first, 6.0);
 }
 
-// A wall at x 2.5-2.6 with a door 0.9 m wide at y 2.55-3.45; everything seen and free else.
-OccupancyGrid wallWithADoor() {
+// A wall at x 2.5-2.6 with a door at y 3 +- half_width (0.9 m wide at y 2.55-3.45 by
+// default); everything seen and free else.
+OccupancyGrid wallWithADoor(double half_width = 0.45) {
   const MapLimits lim = MapLimits::covering({0.0, 0.0}, {8.0, 6.0}, 0.05);
   OccupancyGrid map(lim, OccupancyConfig{});
   std::vector<int16_t> lo(lim.size(), -500);
@@ -145,7 +147,8 @@ OccupancyGrid wallWithADoor() {
   for (int iy = 0; iy < lim.height; ++iy)
     for (int ix = 0; ix < lim.width; ++ix) {
       const Eigen::Vector2d c = lim.cellCenter(ix, iy);
-      if (c.x() > 2.5 && c.x() < 2.6 && (c.y() < 2.55 || c.y() > 3.45)) lo[lim.index(ix, iy)] = 500;
+      if (c.x() > 2.5 && c.x() < 2.6 && std::abs(c.y() - 3.0) > half_width)
+        lo[lim.index(ix, iy)] = 500;
     }
   map.assign(lo, seen);
   return map;
@@ -196,6 +199,48 @@ TEST(MissionTest, WaitsAtADoorWhileATeammateNearerToItGoesThrough) {
   EXPECT_LT(least_off, 1.5);
   // It waits at most passage_wait_s (20 s) for a teammate that stays.
   EXPECT_LT(throughTheDoor(1.2, 1e9).second, 1.5) << "waited for good";
+}
+
+// A robot carried east of the wall on its way home west of it, through a door `half_width`
+// either side of y = 3 (a multiple of the 5 cm cells), planning with a margin of 0.15 m.
+// Returns its least x on the way home, and its least distance to the jambs' cells (m).
+std::pair<double, double> homeThroughANarrowDoor(double half_width) {
+  const Pose2 home(1.0, 3.0, 0.0);
+  const OccupancyGrid map = wallWithADoor(half_width);
+  MissionConfig c = quickFirstSortie();
+  c.planning.margin = 0.15;
+  c.look_from_m = 0.5;  // no straight drive at home from beyond the door
+  MissionAgent mission(home, c);
+  Pose2 pose = home;
+  const double dt = 0.05;
+  double least = 1e9, clearance = 1e9;
+  for (int step = 0; step < 6000 && mission.phase() != MissionPhase::kAtHome; ++step) {
+    const MissionPhase before = mission.phase();
+    const MotionCommand cmd = mission.update(step * dt, pose, map, nullptr);
+    if (before == MissionPhase::kLookAtHome && mission.phase() == MissionPhase::kExplore)
+      pose = Pose2(4.5, 3.0, M_PI);  // carried east of the wall
+    pose = pose * Pose2(cmd.linear * dt, 0.0, cmd.angular * dt);
+    if (mission.phase() != MissionPhase::kReturn) continue;
+    least = std::min(least, pose.x);
+    // The jambs' squares: x 2.5-2.6, |y - 3| >= half_width (a cell boundary).
+    const double dx = std::max({2.5 - pose.x, 0.0, pose.x - 2.6});
+    const double dy = std::max(0.0, half_width - std::abs(pose.y - 3.0));
+    clearance = std::min(clearance, std::hypot(dx, dy));
+  }
+  return {least, clearance};
+}
+
+TEST(MissionTest, GoesHomeThroughADoorWithTooLittleRoomForItsPlanningMargin) {
+  // A door 0.6 m wide in the map (the building's lab door came out 0.5 m wide where it is
+  // 0.9): 0.30 m from its middle cells' centres to the jambs', less than the body's 0.178 m
+  // and the margin's 0.15, more than the body and the least margin (0.07 m). It used to wait
+  // there for good.
+  const auto [least, clearance] = homeThroughANarrowDoor(0.3);
+  EXPECT_LT(least, 1.5) << "did not go home through the door";
+  EXPECT_GT(clearance, 0.178) << "touched a jamb";
+  // A door 0.4 m wide: 0.2 m from the middle to the jambs' centres, no room for the body and
+  // the least margin: it does not go through.
+  EXPECT_GT(homeThroughANarrowDoor(0.2).first, 2.6);
 }
 
 }  // namespace
