@@ -237,10 +237,10 @@ void MissionAgent::goHome(double now, const Pose2& odometry, const OccupancyGrid
       if (plan.solved()) plan_home_at_end_ = true;
     }
   }
+  // No way with the margin: with the least one that keeps the body off every blocked cell.
+  const double least = std::sqrt(2.0) * map.limits().resolution;
   bool squeezed = false;
   if (!plan.solved() && (home - odometry.translation()).norm() > config_.look_from_m) {
-    // No way with the margin: with the least one that keeps the body off every blocked cell.
-    const double least = std::sqrt(2.0) * map.limits().resolution;
     if (least < config_.planning.margin) {
       const PlanningMap tight = planningMap(map, false, true, least);
       if (tight.freeAt(from.translation())) {
@@ -254,7 +254,7 @@ void MissionAgent::goHome(double now, const Pose2& odometry, const OccupancyGrid
     if (step_off) path_.waypoints.insert(path_.waypoints.begin(), odometry.translation());
     startRoute(routeOf(path_.waypoints), now);
     if (squeezed) {
-      home_margin_ = std::sqrt(2.0) * map.limits().resolution;
+      home_margin_ = least;
       last_event_ = "no way home with the planning margin: going with the least";
     }
   } else if ((home - odometry.translation()).norm() <= config_.look_from_m) {

@@ -100,6 +100,24 @@ OccupancyGrid wallWithTheWayRoundUnknown() {
   return map;
 }
 
+// A kinematic robot on its mission over `map` from `home` for at most `steps` control steps
+// of 50 ms or until it is back at home, carried to `carried` as its first sortie sets off;
+// `watch(phase, pose)` after each step.
+template <typename Watch>
+void carriedAway(MissionAgent& mission, const Pose2& home, const Pose2& carried,
+                 const OccupancyGrid& map, int steps, Watch&& watch) {
+  Pose2 pose = home;
+  const double dt = 0.05;
+  for (int step = 0; step < steps && mission.phase() != MissionPhase::kAtHome; ++step) {
+    const MissionPhase before = mission.phase();
+    const MotionCommand cmd = mission.update(step * dt, pose, map, nullptr);
+    if (before == MissionPhase::kLookAtHome && mission.phase() == MissionPhase::kExplore)
+      pose = carried;
+    pose = pose * Pose2(cmd.linear * dt, 0.0, cmd.angular * dt);
+    watch(mission.phase(), pose);
+  }
+}
+
 // Runs a mission whose first sortie ends at once, carried to (3.5, 3) east of the wall, home
 // at (2, 3) west of it. Returns, for its way home east of the wall: the farthest north it
 // went, and the nearest it came to home.
@@ -109,20 +127,13 @@ std::pair<double, double> wayHome(double max_home_detour) {
   MissionConfig c = quickFirstSortie();
   c.max_home_detour = max_home_detour;
   MissionAgent mission(home, c);
-  Pose2 pose = home;
-  const double dt = 0.05;
   double north = 0.0, nearest = 1e9;
-  for (int step = 0; step < 40000 && mission.phase() != MissionPhase::kAtHome; ++step) {
-    const MissionPhase before = mission.phase();
-    const MotionCommand cmd = mission.update(step * dt, pose, map, nullptr);
-    if (before == MissionPhase::kLookAtHome && mission.phase() == MissionPhase::kExplore)
-      pose = Pose2(3.5, 3.0, 0.0);  // carried east of the wall
-    pose = pose * Pose2(cmd.linear * dt, 0.0, cmd.angular * dt);
-    if (mission.phase() == MissionPhase::kReturn && pose.x > 2.6) {
-      north = std::max(north, pose.y);
-      nearest = std::min(nearest, (pose.translation() - home.translation()).norm());
-    }
-  }
+  carriedAway(mission, home, Pose2(3.5, 3.0, 0.0), map, 40000,
+              [&](MissionPhase phase, const Pose2& pose) {
+                if (phase != MissionPhase::kReturn || pose.x <= 2.6) return;
+                north = std::max(north, pose.y);
+                nearest = std::min(nearest, (pose.translation() - home.translation()).norm());
+              });
   return {north, nearest};
 }
 
@@ -211,22 +222,16 @@ std::pair<double, double> homeThroughANarrowDoor(double half_width) {
   c.planning.margin = 0.15;
   c.look_from_m = 0.5;  // no straight drive at home from beyond the door
   MissionAgent mission(home, c);
-  Pose2 pose = home;
-  const double dt = 0.05;
   double least = 1e9, clearance = 1e9;
-  for (int step = 0; step < 6000 && mission.phase() != MissionPhase::kAtHome; ++step) {
-    const MissionPhase before = mission.phase();
-    const MotionCommand cmd = mission.update(step * dt, pose, map, nullptr);
-    if (before == MissionPhase::kLookAtHome && mission.phase() == MissionPhase::kExplore)
-      pose = Pose2(4.5, 3.0, M_PI);  // carried east of the wall
-    pose = pose * Pose2(cmd.linear * dt, 0.0, cmd.angular * dt);
-    if (mission.phase() != MissionPhase::kReturn) continue;
-    least = std::min(least, pose.x);
-    // The jambs' squares: x 2.5-2.6, |y - 3| >= half_width (a cell boundary).
-    const double dx = std::max({2.5 - pose.x, 0.0, pose.x - 2.6});
-    const double dy = std::max(0.0, half_width - std::abs(pose.y - 3.0));
-    clearance = std::min(clearance, std::hypot(dx, dy));
-  }
+  carriedAway(mission, home, Pose2(4.5, 3.0, M_PI), map, 6000,
+              [&](MissionPhase phase, const Pose2& pose) {
+                if (phase != MissionPhase::kReturn) return;
+                least = std::min(least, pose.x);
+                // The jambs' squares: x 2.5-2.6, |y - 3| >= half_width (a cell boundary).
+                const double dx = std::max({2.5 - pose.x, 0.0, pose.x - 2.6});
+                const double dy = std::max(0.0, half_width - std::abs(pose.y - 3.0));
+                clearance = std::min(clearance, std::hypot(dx, dy));
+              });
   return {least, clearance};
 }
 
