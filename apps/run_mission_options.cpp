@@ -50,6 +50,11 @@ void addMissionSettingOptions(CLI::App& cmd, RunOptions& run) {
           "make frontiers when no other frontier has a goal (0: off) [default: the world's, "
           "else 0]")
       ->check(CLI::NonNegativeNumber);
+  setting(cmd, "--doorway-width", run.doorway_width,
+          "With --explore and --fringe-clearance: m; uncertain cells between two obstacles at "
+          "most this far apart (a door seen obliquely) count as unseen however near the "
+          "obstacles (0: off) [default: the world's, else 0]")
+      ->check(CLI::NonNegativeNumber);
   setting(cmd, "--floor-edge-depth", run.floor_edge_depth,
           "m; a camera column that matches nothing but sees the floor end nearer than this "
           "depth has met a textureless wall there (0: off) [default: the world's, else 0]")

@@ -118,6 +118,7 @@ void writeOutputs(const RunOptions& opt, const sim::World& world, const RunResul
     j.value("first_sortie_budget_m", m->first_sortie_budget_m);
     j.value("safety_distance", m->safety_distance).value("slow_distance", m->slow_distance);
     j.value("fringe_clearance", m->fringe_clearance).value("goal_clearance", m->goal_clearance);
+    j.value("doorway_width", m->doorway_width);
     j.value("retry_frontiers", m->retry_frontiers).value("floor_edge_depth", m->floor_edge_depth);
     j.value("shaped_closures", m->shaped_closures).value("bump_away", m->bump_away);
     j.value("closure_seen_points", m->closure_seen_points);
@@ -292,6 +293,8 @@ RunResult runWorld(const RunOptions& opt) {
           pick(opt.fringe_clearance, we.fringe_clearance, mission.frontiers.fringe_clearance);
       mission.frontiers.goal_clearance =
           pick(opt.goal_clearance, we.goal_clearance, mission.frontiers.goal_clearance);
+      mission.frontiers.doorway_width =
+          pick(opt.doorway_width, we.doorway_width, mission.frontiers.doorway_width);
       mission.frontiers.look_again_gain =
           pick(opt.look_again_gain, we.look_again_gain, mission.frontiers.look_again_gain);
       mission.retry_frontiers =
@@ -311,6 +314,7 @@ RunResult runWorld(const RunOptions& opt) {
           mission.slow_distance,
           mission.frontiers.fringe_clearance,
           mission.frontiers.goal_clearance,
+          mission.frontiers.doorway_width,
           mission.retry_frontiers,
           mapper_config.radial.floor_edge_depth,
           pick(opt.shaped_closures, we.shaped_closures, opt.cooperation.closure_shape),

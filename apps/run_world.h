@@ -50,6 +50,7 @@ struct RunOptions {
   std::optional<double> slow_distance;          // m: MissionConfig::slow_distance (0: off)
   std::optional<double> fringe_clearance;       // m: FrontierConfig::fringe_clearance (0: off)
   std::optional<double> goal_clearance;         // m: FrontierConfig::goal_clearance (0: off)
+  std::optional<double> doorway_width;          // m: FrontierConfig::doorway_width (0: off)
   std::optional<bool> retry_frontiers;          // MissionConfig::retry_frontiers
   std::optional<double> floor_edge_depth;       // m: RadialMapConfig::floor_edge_depth (0: off)
   std::optional<bool> shaped_closures;          // CooperationConfig::closure_shape
@@ -201,7 +202,7 @@ struct RunResult {
   struct MissionSettings {
     double sortie_budget_m = 0.0;
     double first_sortie_budget_m = 0.0, safety_distance = 0.0, slow_distance = 0.0;
-    double fringe_clearance = 0.0, goal_clearance = 0.0;
+    double fringe_clearance = 0.0, goal_clearance = 0.0, doorway_width = 0.0;
     bool retry_frontiers = false;
     double floor_edge_depth = 0.0;
     bool shaped_closures = false;

@@ -22,10 +22,41 @@ void FrontierConfig::validate() const {
   if (!(claim_radius >= 0.0)) bad("claim_radius", "a number >= 0", claim_radius);
   if (!(fringe_clearance >= 0.0)) bad("fringe_clearance", "a number >= 0", fringe_clearance);
   if (!(goal_clearance >= 0.0)) bad("goal_clearance", "a number >= 0", goal_clearance);
+  if (!(doorway_width >= 0.0)) bad("doorway_width", "a number >= 0", doorway_width);
+  if (!(doorway_min_width >= 0.0)) bad("doorway_min_width", "a number >= 0", doorway_min_width);
   if (look_again_gain < 0) bad("look_again_gain", "an integer >= 0", look_again_gain);
 }
 
 namespace {
+
+// Whether cell (ix, iy) lies between two occupied cells on opposite sides, along a grid
+// axis or a diagonal, whose gap (the distance between them less a cell) is within
+// [doorway_min_width, doorway_width].
+bool inOpening(const OccupancyGrid& grid, int ix, int iy, const FrontierConfig& config) {
+  if (!(config.doorway_width > 0.0)) return false;
+  const MapLimits& lim = grid.limits();
+  const int dirs[4][2] = {{1, 0}, {0, 1}, {1, 1}, {1, -1}};
+  for (const auto& d : dirs) {
+    const double step = lim.resolution * std::hypot(d[0], d[1]);
+    const int reach = static_cast<int>(config.doorway_width / step) + 1;
+    // Steps to the first occupied cell that way, or 0 when none within reach.
+    auto occupiedAt = [&](int sx, int sy) {
+      for (int k = 1; k <= reach; ++k) {
+        const int jx = ix + k * sx, jy = iy + k * sy;
+        if (!lim.contains(jx, jy)) return 0;
+        if (grid.state(jx, jy) == CellState::kOccupied) return k;
+      }
+      return 0;
+    };
+    const int a = occupiedAt(d[0], d[1]);
+    if (a == 0) continue;
+    const int b = occupiedAt(-d[0], -d[1]);
+    if (b == 0) continue;
+    const double gap = (a + b - 1) * step;
+    if (gap >= config.doorway_min_width && gap <= config.doorway_width) return true;
+  }
+  return false;
+}
 
 // Open unknown: never observed, or observed too little to tell free from occupied, at least
 // `clearance` (m) from obstacles and joined (4-connected, through such cells) to never-observed
@@ -33,8 +64,10 @@ namespace {
 // unobserved space, which once hid whole corridors from the explorer (no free cell touched an
 // unobserved one). Uncertain cells beside obstacles (stereo's bands along walls and
 // furniture) are left out: driving up to them shows little and bumps into things. With
-// clearance 0, only never-observed cells.
-GridU8 openUnknown(const OccupancyGrid& grid, double clearance) {
+// clearance 0, only never-observed cells. Uncertain cells in an opening (see inOpening) are
+// open however near the obstacles either side.
+GridU8 openUnknown(const OccupancyGrid& grid, const FrontierConfig& config) {
+  const double clearance = config.fringe_clearance;
   const MapLimits& lim = grid.limits();
   const int w = lim.width, h = lim.height;
   GridU8 open(lim, 0);
@@ -73,8 +106,8 @@ GridU8 openUnknown(const OccupancyGrid& grid, double clearance) {
     const int n[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
     for (const auto& d : n) {
       const int jx = x + d[0], jy = y + d[1];
-      if (lim.contains(jx, jy) && !open.at(jx, jy) && !near_obstacle.at(jx, jy) &&
-          grid.state(jx, jy) == CellState::kUnknown) {
+      if (lim.contains(jx, jy) && !open.at(jx, jy) && grid.state(jx, jy) == CellState::kUnknown &&
+          (!near_obstacle.at(jx, jy) || inOpening(grid, jx, jy, config))) {
         open.at(jx, jy) = 1;
         todo.push_back({jx, jy});
       }
@@ -92,7 +125,7 @@ std::vector<Frontier> findFrontiers(const OccupancyGrid& grid, const PlanningMap
   if (planning.limits().width != lim.width || planning.limits().height != lim.height)
     throw std::invalid_argument("findFrontiers: the planning map's limits differ from the grid's");
   const int w = lim.width, h = lim.height;
-  const GridU8 open = openUnknown(grid, config.fringe_clearance);
+  const GridU8 open = openUnknown(grid, config);
   auto unknown = [&](int ix, int iy) { return open.at(ix, iy) != 0; };
   auto isFrontier = [&](int ix, int iy) {
     if (grid.state(ix, iy) != CellState::kFree) return false;

@@ -32,6 +32,14 @@ struct FrontierConfig {
   // observed ones, count as unknown for frontiers (the fringe long stereo rays leave); 0:
   // only never-observed cells do.
   double fringe_clearance = 0.0;
+  // m: uncertain cells within fringe_clearance of obstacles count as unknown all the same
+  // where they lie in an opening: between two obstacles on opposite sides (along a grid axis
+  // or a diagonal) at most this far apart and at least doorway_min_width. A door seen only
+  // obliquely leaves its opening uncertain and its jambs smeared: with fringe_clearance alone
+  // no frontier led through it, and whatever lay beyond went unexplored (the building's lab
+  // back door, seeds 5 and 8). 0: off.
+  double doorway_width = 0.0;
+  double doorway_min_width = 0.25;  // m: narrower gaps are no way through
   // m: a goal this far from every blocked cell (centre to centre) is preferred to a nearer
   // one with less; 0: the nearest free cell, whatever its clearance.
   double goal_clearance = 0.0;
@@ -54,7 +62,8 @@ struct Frontier {
 };
 
 // Frontier cells: free cells with a 4-neighbour not known (never observed, or observed but
-// uncertain, away from obstacles and joined to never-observed cells: fringe_clearance); grouped
+// uncertain, away from obstacles or in an opening between two, and joined to never-observed
+// cells: fringe_clearance, doorway_width); grouped
 // 8-connected; groups smaller than min_cells dropped. Goals are looked for in `planning`'s
 // free cells connected to `robot` (m); frontiers without one have has_goal false.
 std::vector<Frontier> findFrontiers(const OccupancyGrid& grid, const PlanningMap& planning,

@@ -187,6 +187,7 @@ struct World {
     std::optional<double> slow_distance;           // m: MissionConfig::slow_distance
     std::optional<double> fringe_clearance;        // m: FrontierConfig::fringe_clearance
     std::optional<double> goal_clearance;          // m: FrontierConfig::goal_clearance
+    std::optional<double> doorway_width;           // m: FrontierConfig::doorway_width
     std::optional<bool> retry_frontiers;           // MissionConfig::retry_frontiers
     std::optional<double> floor_edge_depth;        // m: RadialMapConfig::floor_edge_depth
     std::optional<bool> shaped_closures;           // CooperationConfig::closure_shape

@@ -222,6 +222,7 @@ World parseWorld(const std::string& text, const std::string& file) {
                           "safety_distance",
                           "slow_distance",
                           "fringe_clearance",
+                          "doorway_width",
                           "goal_clearance",
                           "retry_frontiers",
                           "floor_edge_depth",
@@ -251,6 +252,7 @@ World parseWorld(const std::string& text, const std::string& file) {
       metres("safety_distance", 0.05, 5.0, "metres in [0.05, 5]", e.safety_distance);
       metres("slow_distance", 0.0, 10.0, "metres in [0, 10] (0: never slow down)", e.slow_distance);
       metres("fringe_clearance", 0.0, 5.0, "metres in [0, 5] (0: off)", e.fringe_clearance);
+      metres("doorway_width", 0.0, 5.0, "metres in [0, 5] (0: off)", e.doorway_width);
       metres("goal_clearance", 0.0, 5.0, "metres in [0, 5] (0: off)", e.goal_clearance);
       metres("floor_edge_depth", 0.0, 5.0, "metres in [0, 5] (0: off)", e.floor_edge_depth);
       metres("passage_width", 0.0, 5.0, "metres in [0, 5] (0: off)", e.passage_width);

@@ -189,6 +189,40 @@ TEST(FrontiersTest, AFringeObservedTooLittleToTellDoesNotHideTheUnknownBeyond) {
   EXPECT_EQ(explorer.next(g, p, Pose2(1.0, 2.0, 0.0)).status, ExploreStatus::kGoal);
 }
 
+TEST(FrontiersTest, AnUncertainDoorwayBetweenTwoJambsIsAFrontierWithADoorwayWidth) {
+  // A door 0.5 m wide seen only obliquely: its opening observed but left uncertain, every
+  // cell of it within fringe_clearance of a jamb; beyond it nothing has been seen. With the
+  // fringe alone no frontier leads through it (the building's lab back door, seeds 5 and 8).
+  const OccupancyGrid g = observedWeakly(
+      roomWithDoors({{1.75, 2.25}}),
+      [](const Eigen::Vector2d& c) {
+        return c.x() > 2.95 && c.x() < 3.05 && c.y() > 1.75 && c.y() < 2.25;
+      },
+      -20);  // weakly free: state unknown
+  const MapLimits& lim = g.limits();
+  ASSERT_EQ(g.state(lim.cellX(3.0), lim.cellY(2.0)), CellState::kUnknown);
+  const PlanningMap p = planningOf(g);
+  FrontierConfig fc;
+  fc.fringe_clearance = 0.3;
+  EXPECT_TRUE(findFrontiers(g, p, {1.0, 2.0}, fc).empty());
+  fc.doorway_width = 1.2;
+  const std::vector<Frontier> f = findFrontiers(g, p, {1.0, 2.0}, fc);
+  ASSERT_EQ(f.size(), 1u);
+  EXPECT_NEAR(f[0].centroid.x(), 2.925, 0.06);  // the room's free cells before the opening
+  EXPECT_NEAR(f[0].centroid.y(), 2.0, 0.1);
+  EXPECT_GT(f[0].gain, 100);
+  ASSERT_TRUE(f[0].has_goal);
+  FrontierExplorer explorer(fc, PlannerConfig{});
+  EXPECT_EQ(explorer.next(g, p, Pose2(1.0, 2.0, 0.0)).status, ExploreStatus::kGoal);
+  fc.doorway_width = 0.4;  // the gap is wider
+  EXPECT_TRUE(findFrontiers(g, p, {1.0, 2.0}, fc).empty());
+  fc.doorway_width = 1.2;
+  fc.doorway_min_width = 0.6;  // the gap is narrower
+  EXPECT_TRUE(findFrontiers(g, p, {1.0, 2.0}, fc).empty());
+  fc.doorway_min_width = -0.1;
+  EXPECT_THROW(fc.validate(), std::invalid_argument);
+}
+
 TEST(FrontiersTest, UncertainCellsClosedInByKnownOnesAreNoFrontier) {
   // In the closed room, a patch seen but left uncertain (stereo's band beside a table): with
   // nothing unobserved behind it, driving up to it shows nothing new.

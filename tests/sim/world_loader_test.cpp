@@ -86,7 +86,8 @@ TEST(WorldLoaderTest, MissionSaysWhatRunDoesByDefault) {
 TEST(WorldLoaderTest, MissionSettingsOfABuildingAreReadAndChecked) {
   const World w = parseWorld(
       "mission: {mode: explore, first_sortie_budget_m: 10, safety_distance: 0.45, "
-      "slow_distance: 1, fringe_clearance: 0.3, goal_clearance: 0.4, retry_frontiers: true, "
+      "slow_distance: 1, fringe_clearance: 0.3, doorway_width: 1.1, goal_clearance: 0.4, "
+      "retry_frontiers: true, "
       "floor_edge_depth: 1.5, shaped_closures: true, bump_away: true, visited_radius: 0.09, "
       "calibrate_distance_scale: false, passage_width: 1.2, sortie_budget_m: 30, "
       "planning_margin: 0.2, preferred_margin: 0.3, closures: both, post_gate_m: 0.25, "
@@ -99,6 +100,7 @@ TEST(WorldLoaderTest, MissionSettingsOfABuildingAreReadAndChecked) {
   EXPECT_EQ(w.exploration.safety_distance, 0.45);
   EXPECT_EQ(w.exploration.slow_distance, 1.0);
   EXPECT_EQ(w.exploration.fringe_clearance, 0.3);
+  EXPECT_EQ(w.exploration.doorway_width, 1.1);
   EXPECT_EQ(w.exploration.goal_clearance, 0.4);
   EXPECT_EQ(w.exploration.retry_frontiers, true);
   EXPECT_EQ(w.exploration.floor_edge_depth, 1.5);
