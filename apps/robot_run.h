@@ -2,6 +2,7 @@
 // internal to the runner, shared by run_world.cpp and run_sharing.cpp.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -12,6 +13,7 @@
 #include "core/agent/mission.h"
 #include "core/agent/route_follower.h"
 #include "core/correction/odometry_calibration.h"
+#include "core/correction/stereo_scale.h"
 #include "core/localization/home_base.h"
 #include "core/sharing/shared_map.h"
 #include "robots/sim/sim_robot.h"
@@ -40,6 +42,12 @@ struct RobotRun {
   // each radial map (naive sharing posts at it).
   OdometryCalibration calibration;
   bool calibrate = false;
+  // With `calibrate`: the distance scale from stereo along straight stretches, pooled over
+  // the sorties (core/correction/stereo_scale.h), rather than from the sorties' corrections.
+  bool stereo_scale = false;
+  StereoScale stereo;
+  size_t stereo_measured = SIZE_MAX;  // sortie_begin of the sortie last pooled
+  double sortie_scale = 0.0;          // the calibration's distance scale the sortie began on
   std::vector<Pose2> raw;
   Pose2 odo;  // this step's odometry as the robot uses it (calibrated when `calibrate`)
   const RadialMap* latest = nullptr;  // this step's radial map, for the mission
@@ -52,6 +60,12 @@ struct RobotRun {
   int recording = -1;                   // the robot's index in the recording
   RobotDescription mapper_description;  // what the mapper was given
 };
+
+// Pairs of radial maps a stereo distance scale needs before the calibration takes it (a
+// robot gathers 30-65 in a 1800 s run of the building; with 60 most never took one), and
+// the largest it takes.
+inline constexpr int kMinStereoScalePairs = 30;
+inline constexpr double kMaxStereoScale = 0.05;
 
 // The robot whose true occupancy the shared map is measured against: the tallest (each
 // robot's truth is the world up to its swept height).

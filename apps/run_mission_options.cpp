@@ -136,6 +136,12 @@ void addMissionSettingOptions(CLI::App& cmd, RunOptions& run) {
         "With --explore: calibrate heading drift and turn scale only (a home-base fix does "
         "not observe the distance scale)",
         run.calibrate_distance_scale);
+  onOff(cmd, "--stereo-scale",
+        "With --explore: the odometry calibration takes its distance scale from stereo (radial "
+        "maps 1-1.5 m apart on straight stretches, aligned) and each sortie is rescaled to it "
+        "before its correction [default: the world's, else off]",
+        "--no-stereo-scale", "With --explore: no distance scale from stereo",
+        run.stereo_distance_scale);
   onOff(cmd, "--shaped-closures",
         "With --explore and closures: a closure pins its position only in the directions its "
         "alignment pins down (along a straight corridor's walls it is left loose) [default: "
@@ -151,6 +157,13 @@ void addMissionSettingOptions(CLI::App& cmd, RunOptions& run) {
         "--closure-near-points",
         "With --explore: those alignments use every point near the map's obstacles",
         run.closure_seen_points);
+  onOff(cmd, "--closure-decided-points",
+        "With --explore: those alignments also leave out points in cells the map saw but is "
+        "unsure of, neither free nor occupied (a wall's far part seen weakly pulled stretches "
+        "back along it) [default: the world's, else off]",
+        "--closure-undecided-points",
+        "With --explore: those alignments also judge points in cells the map is unsure of",
+        run.closure_decided_points);
 }
 
 }  // namespace coopmap

@@ -6,6 +6,7 @@
 #include "apps/robot_run.h"
 #include "core/correction/drift_correction.h"
 #include "core/correction/home_return.h"
+#include "core/correction/stereo_scale.h"
 #include "core/mapping/map_metrics.h"
 
 namespace coopmap::run_detail {
@@ -123,6 +124,37 @@ void trackWhileDriving(RobotRun& r) {
   }
 }
 
+// The distance scale the cameras measured along the sortie's straight stretches (on the
+// encoders' odometry), pooled with the earlier sorties', becomes the calibration's; the
+// sortie itself, driven on the scale calibrated so far, is rescaled to it before it is
+// corrected and posted (a home-base fix cannot see the scale, and closures to a map drawn at
+// the odometry's own scale only confirm it).
+void calibrateStereoScale(RobotRun& r, TraverseLog& sortie) {
+  if (r.raw.size() < r.sortie_begin + sortie.entries.size()) return;
+  if (r.stereo_measured != r.sortie_begin) {  // once a sortie (a re-approach ends it again)
+    r.stereo_measured = r.sortie_begin;
+    TraverseLog raw = sortie;
+    for (size_t j = 0; j < raw.entries.size(); ++j)
+      raw.entries[j].scan.odometry = r.raw[r.sortie_begin + j];
+    r.stereo.add(stereoDistanceScale(raw));
+  }
+  // Wheel odometry miscounting distance by more than kMaxStereoScale is no odometry; such a
+  // figure is the matches' noise.
+  if (r.stereo.pairs < kMinStereoScalePairs || std::abs(r.stereo.scale()) > kMaxStereoScale) return;
+  const double before = r.sortie_scale;  // what the sortie was driven on
+  const double after = r.stereo.scale();
+  r.calibration.setDistanceScale(after);
+  OdometryBias residual;
+  residual.distance_scale = (1.0 + after) / (1.0 + before) - 1.0;
+  Pose2 previous = sortie.entries.front().scan.odometry;
+  for (size_t j = 1; j < sortie.entries.size(); ++j) {
+    const Pose2 u = previous.inverse() * sortie.entries[j].scan.odometry;
+    previous = sortie.entries[j].scan.odometry;
+    sortie.entries[j].scan.odometry =
+        sortie.entries[j - 1].scan.odometry * correctedIncrement(u, residual);
+  }
+}
+
 // The robot is back at the home base and has looked at it: localize, correct and post the
 // sortie (core/agent/cooperation.h), apply the fix to its estimate, import the shared map,
 // and send it out again.
@@ -137,6 +169,7 @@ void endSortie(RobotRun& r, LocalSharedMap& live, double now, double reapproach_
   // The sortie on its odometry chain from where it began (the tracker's steps are not motion).
   for (size_t j = 0; j < sortie.entries.size(); ++j)
     sortie.entries[j].scan.odometry = r.sortie_frame * r.mapper->rawOdometry()[r.sortie_begin + j];
+  if (r.calibrate && r.stereo_scale) calibrateStereoScale(r, sortie);
   if (!r.reapproaching) {
     // Back away from the start (odometry drifted): the home base looks different from
     // there. Drive to the start by a first fix and look again.
@@ -168,6 +201,7 @@ void endSortie(RobotRun& r, LocalSharedMap& live, double now, double reapproach_
   if (rep.fixed) r.mapper->setFrame(rep.correction * r.sortie_frame);
   if (rep.posted && r.calibrate) r.calibration.addSortie(rep.bias, rep.length_m);
   r.sortie_frame = r.mapper->frame();
+  r.sortie_scale = r.calibration.bias().distance_scale;
   const SharedMapSnapshot snap = live.snapshot();
   if (snap.version > 0) {
     r.mapper->importMap(snap.log_odds, snap.seen);

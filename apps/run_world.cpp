@@ -122,8 +122,10 @@ void writeOutputs(const RunOptions& opt, const sim::World& world, const RunResul
     j.value("retry_frontiers", m->retry_frontiers).value("floor_edge_depth", m->floor_edge_depth);
     j.value("shaped_closures", m->shaped_closures).value("bump_away", m->bump_away);
     j.value("closure_seen_points", m->closure_seen_points);
+    j.value("closure_decided_points", m->closure_decided_points);
     j.value("visited_radius", m->visited_radius).value("recent_hits_s", m->recent_hits_s);
     j.value("calibrate_distance_scale", m->calibrate_distance_scale);
+    j.value("stereo_distance_scale", m->stereo_distance_scale);
     j.value("passage_width", m->passage_width).value("planning_margin", m->planning_margin);
     j.value("preferred_margin", m->preferred_margin).value("closures", m->closures);
     j.value("post_gate_m", m->post_gate_m).value("manhattan_sigma_deg", m->manhattan_sigma_deg);
@@ -320,10 +322,13 @@ RunResult runWorld(const RunOptions& opt) {
           pick(opt.shaped_closures, we.shaped_closures, opt.cooperation.closure_shape),
           pick(opt.closure_seen_points, we.closure_seen_points,
                opt.cooperation.closure_alignment.seen_points_only),
+          pick(opt.closure_decided_points, we.closure_decided_points,
+               opt.cooperation.closure_alignment.decided_points_only),
           mission.bump_away,
           mission.visited_radius,
           mission.recent_hits_s,
           pick(opt.calibrate_distance_scale, we.calibrate_distance_scale, true),
+          pick(opt.stereo_distance_scale, we.stereo_distance_scale, false),
           mission.passage_width,
           mission.planning.margin,
           mission.planner.preferred_margin,
@@ -343,6 +348,7 @@ RunResult runWorld(const RunOptions& opt) {
         CooperationConfig cooperation = opt.cooperation;
         cooperation.closure_shape = settings->shaped_closures;
         cooperation.closure_alignment.seen_points_only = settings->closure_seen_points;
+        cooperation.closure_alignment.decided_points_only = settings->closure_decided_points;
         cooperation.setClosureKinds(closures);  // checked above (options) or on loading
         cooperation.post_gate_m = settings->post_gate_m;
         cooperation.manhattan_sigma_rad = settings->manhattan_sigma_deg * M_PI / 180.0;
@@ -350,7 +356,10 @@ RunResult runWorld(const RunOptions& opt) {
         r.coop = std::make_unique<HomeBaseCooperation>(
             spec.name, nominalHomeBase(world), world.home_base.arm_length, &*live, cooperation);
         r.calibrate = opt.calibrate_odometry;
-        r.calibration = OdometryCalibration(settings->calibrate_distance_scale);
+        // With the scale from stereo, the sorties' corrections do not also move it.
+        r.stereo_scale = settings->stereo_distance_scale;
+        r.calibration = OdometryCalibration(settings->calibrate_distance_scale &&
+                                            !settings->stereo_distance_scale);
       }
     }
     r.result.name = spec.name;

@@ -55,6 +55,7 @@ struct RunOptions {
   std::optional<double> floor_edge_depth;       // m: RadialMapConfig::floor_edge_depth (0: off)
   std::optional<bool> shaped_closures;          // CooperationConfig::closure_shape
   std::optional<bool> closure_seen_points;      // AlignmentConfig::seen_points_only (closures)
+  std::optional<bool> closure_decided_points;   // AlignmentConfig::decided_points_only (same)
   std::optional<bool> bump_away;                // MissionConfig::bump_away
   std::optional<double> visited_radius;         // m: MissionConfig::visited_radius (0: radius)
   std::optional<double> recent_hits_s;          // s: MissionConfig::recent_hits_s (0: off)
@@ -76,6 +77,9 @@ struct RunOptions {
   // Whether that calibration includes the distance scale (OdometryCalibration); unset: the
   // world's mission setting, else true.
   std::optional<bool> calibrate_distance_scale;
+  // The calibration's distance scale measured by stereo along straight stretches
+  // (core/correction/stereo_scale.h) instead; unset: the world's mission setting, else false.
+  std::optional<bool> stereo_distance_scale;
   // With more than one robot: frontiers near teammates' goals are worth less, and a robot
   // whose own part is explored goes home to share it (MissionConfig::claimed_return_factor);
   // false: each robot explores as if alone.
@@ -207,10 +211,12 @@ struct RunResult {
     double floor_edge_depth = 0.0;
     bool shaped_closures = false;
     bool closure_seen_points = false;
+    bool closure_decided_points = false;
     bool bump_away = false;
     double visited_radius = 0.0;
     double recent_hits_s = 0.0;
     bool calibrate_distance_scale = true;
+    bool stereo_distance_scale = false;
     double passage_width = 0.0;
     double planning_margin = 0.0;
     double preferred_margin = 0.0;

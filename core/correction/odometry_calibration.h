@@ -25,6 +25,9 @@ class OdometryCalibration {
   // What a corrected sortie found (residual errors of the odometry it ran on) over
   // `length_m` driven. Sorties shorter than min_length_m tell too little and are skipped.
   void addSortie(const OdometryBias& residual, double length_m, double min_length_m = 5.0);
+  // Sets the distance scale from elsewhere (e.g. stereo, core/correction/stereo_scale.h);
+  // later calls of calibrate() use it.
+  void setDistanceScale(double scale) { bias_.distance_scale = scale; }
   const OdometryBias& bias() const { return bias_; }
   double weight_m() const { return weight_m_; }
 

@@ -130,6 +130,12 @@ std::vector<Eigen::Vector2d> ScanAligner::points(const std::vector<const RadialM
           (config_.seen_points_only ? !behindSeenSurface(ix, iy)
                                     : field_.at<float>(iy, ix) > config_.robust_scale))
         continue;
+      // Seen but undecided (neither free nor occupied): the reference has weak evidence of
+      // something there, e.g. a wall's far part seen once at long range. Counted against the
+      // nearest cell it is sure of, a point there is pulled back along the wall.
+      if (config_.decided_points_only && reference_.seen(ix, iy) &&
+          reference_.state(ix, iy) == CellState::kUnknown)
+        continue;
       out.push_back(p);
       if (weights)
         weights->push_back(

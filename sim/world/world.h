@@ -195,6 +195,7 @@ struct World {
     std::optional<double> visited_radius;          // m: MissionConfig::visited_radius
     std::optional<double> recent_hits_s;           // s: MissionConfig::recent_hits_s
     std::optional<bool> calibrate_distance_scale;  // OdometryCalibration's distance scale
+    std::optional<bool> stereo_distance_scale;     // that scale from stereo (stereo_scale.h)
     std::optional<double> passage_width;           // m: MissionConfig::passage_width
     std::optional<double> planning_margin;   // m: PlanningMapConfig::margin of exploring robots
     std::optional<double> preferred_margin;  // m: PlannerConfig::preferred_margin of the same
@@ -213,6 +214,8 @@ struct World {
     // AlignmentConfig::seen_points_only of the sorties' alignments to the shared map (their
     // closures, post gate and rival check)
     std::optional<bool> closure_seen_points;
+    // AlignmentConfig::decided_points_only of the same alignments.
+    std::optional<bool> closure_decided_points;
     // FrontierConfig::look_again_gain: never-observed cells a frontier whose goal was reached
     // must still have to be gone to once more, for a full turn there (0: off)
     std::optional<int> look_again_gain;

@@ -230,6 +230,7 @@ World parseWorld(const std::string& text, const std::string& file) {
                           "bump_away",
                           "visited_radius",
                           "calibrate_distance_scale",
+                          "stereo_distance_scale",
                           "passage_width",
                           "planning_margin",
                           "preferred_margin",
@@ -240,6 +241,7 @@ World parseWorld(const std::string& text, const std::string& file) {
                           "wall_heading_gain",
                           "closure_scans",
                           "closure_seen_points",
+                          "closure_decided_points",
                           "look_again_gain"});
       World::Exploration& e = w.exploration;
       auto metres = [&](const char* key, double lo, double hi, const char* what,
@@ -271,6 +273,8 @@ World parseWorld(const std::string& text, const std::string& file) {
         e.shaped_closures = (*mission)["shaped_closures"].asBool();
       if (mission->has("closure_seen_points"))
         e.closure_seen_points = (*mission)["closure_seen_points"].asBool();
+      if (mission->has("closure_decided_points"))
+        e.closure_decided_points = (*mission)["closure_decided_points"].asBool();
       if (mission->has("bump_away")) e.bump_away = (*mission)["bump_away"].asBool();
       if (mission->has("closure_scans"))
         e.closure_scans = (*mission)["closure_scans"].asInt(1, 100);
@@ -284,6 +288,8 @@ World parseWorld(const std::string& text, const std::string& file) {
       }
       if (mission->has("calibrate_distance_scale"))
         e.calibrate_distance_scale = (*mission)["calibrate_distance_scale"].asBool();
+      if (mission->has("stereo_distance_scale"))
+        e.stereo_distance_scale = (*mission)["stereo_distance_scale"].asBool();
     }
   }
   if (root.has("seed")) w.seed = static_cast<uint64_t>(root["seed"].asInt(0, 1 << 30));

@@ -121,6 +121,8 @@ TEST(ExploreScenarioTest, TheBuildingsMissionSettingsApplyUnlessTheCommandLineSa
   EXPECT_EQ(r.mission_settings->wall_heading_gain, 0.0);
   EXPECT_EQ(r.mission_settings->closure_scans, CooperationConfig{}.closure_scans);
   EXPECT_FALSE(r.mission_settings->closure_seen_points);
+  EXPECT_FALSE(r.mission_settings->closure_decided_points);
+  EXPECT_FALSE(r.mission_settings->stereo_distance_scale);
   EXPECT_EQ(r.mission_settings->look_again_gain, 0);
   o.planning_margin = 0.3;
   o.preferred_margin = 0.25;
@@ -130,6 +132,8 @@ TEST(ExploreScenarioTest, TheBuildingsMissionSettingsApplyUnlessTheCommandLineSa
   o.wall_heading_gain = 0.3;
   o.closure_scans = 12;
   o.closure_seen_points = true;
+  o.closure_decided_points = true;
+  o.stereo_distance_scale = true;
   o.look_again_gain = 40;
   r = runWorld(o);
   EXPECT_EQ(r.mission_settings->planning_margin, 0.3);
@@ -140,6 +144,8 @@ TEST(ExploreScenarioTest, TheBuildingsMissionSettingsApplyUnlessTheCommandLineSa
   EXPECT_EQ(r.mission_settings->wall_heading_gain, 0.3);
   EXPECT_EQ(r.mission_settings->closure_scans, 12);
   EXPECT_TRUE(r.mission_settings->closure_seen_points);
+  EXPECT_TRUE(r.mission_settings->closure_decided_points);
+  EXPECT_TRUE(r.mission_settings->stereo_distance_scale);
   EXPECT_EQ(r.mission_settings->look_again_gain, 40);
   o.closures = "some";
   EXPECT_THROW(runWorld(o), std::invalid_argument);

@@ -89,10 +89,11 @@ TEST(WorldLoaderTest, MissionSettingsOfABuildingAreReadAndChecked) {
       "slow_distance: 1, fringe_clearance: 0.3, doorway_width: 1.1, goal_clearance: 0.4, "
       "retry_frontiers: true, "
       "floor_edge_depth: 1.5, shaped_closures: true, bump_away: true, visited_radius: 0.09, "
-      "calibrate_distance_scale: false, passage_width: 1.2, sortie_budget_m: 30, "
+      "calibrate_distance_scale: false, stereo_distance_scale: true, passage_width: 1.2, "
+      "sortie_budget_m: 30, "
       "planning_margin: 0.2, preferred_margin: 0.3, closures: both, post_gate_m: 0.25, "
       "recent_hits_s: 8, manhattan_sigma_deg: 0.6, wall_heading_gain: 0.5, closure_scans: 12, "
-      "closure_seen_points: true, look_again_gain: 30}\n" +
+      "closure_seen_points: true, closure_decided_points: true, look_again_gain: 30}\n" +
           minimal(),
       "w.yaml");
   EXPECT_EQ(w.mission, "explore");
@@ -108,6 +109,7 @@ TEST(WorldLoaderTest, MissionSettingsOfABuildingAreReadAndChecked) {
   EXPECT_EQ(w.exploration.bump_away, true);
   EXPECT_EQ(w.exploration.visited_radius, 0.09);
   EXPECT_EQ(w.exploration.calibrate_distance_scale, false);
+  EXPECT_EQ(w.exploration.stereo_distance_scale, true);
   EXPECT_EQ(w.exploration.passage_width, 1.2);
   EXPECT_EQ(w.exploration.sortie_budget_m, 30.0);
   EXPECT_EQ(w.exploration.planning_margin, 0.2);
@@ -119,6 +121,7 @@ TEST(WorldLoaderTest, MissionSettingsOfABuildingAreReadAndChecked) {
   EXPECT_EQ(w.exploration.wall_heading_gain, 0.5);
   EXPECT_EQ(w.exploration.closure_scans, 12);
   EXPECT_EQ(w.exploration.closure_seen_points, true);
+  EXPECT_EQ(w.exploration.closure_decided_points, true);
   EXPECT_EQ(w.exploration.look_again_gain, 30);
   EXPECT_FALSE(parseWorld(minimal(), "w.yaml").exploration.safety_distance.has_value());
   const World building = loadWorld(kSrc + "/worlds/lab_corridor.yaml");
