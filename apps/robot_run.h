@@ -90,6 +90,11 @@ SharedMapResult shareMaps(const sim::World& world, const MapLimits& limits, cons
 // sortie (core/agent/cooperation.h), apply the fix to its estimate, import the shared map,
 // and send it out again (or stop it, without a trusted fix).
 void endSortie(RobotRun& r, LocalSharedMap& live, double now, double reapproach_m, bool track);
+
+// Writes the run's outputs to opt.out_dir (run_world_outputs.cpp). `floor`: the drivable
+// floor over the run's map limits (what the metrics score).
+void writeOutputs(const RunOptions& opt, const sim::World& world, const RunResult& result,
+                  const std::vector<RobotRun>& runs, const GridU8& floor);
 // Each new radial map while driving: the tracker's and the walls' corrections of the
 // estimate (run_sharing.cpp).
 void trackWhileDriving(RobotRun& r);
