@@ -38,6 +38,7 @@ class Surfaces {
       : points_(std::move(points)), cell_(cell) {
     for (size_t i = 0; i < points_.size(); ++i) cells_[key(points_[i])].push_back(i);
     normals_.resize(points_.size(), Eigen::Vector2d::Zero());
+    means_.resize(points_.size(), Eigen::Vector2d::Zero());
     for (size_t i = 0; i < points_.size(); ++i) {
       Eigen::Vector2d mean = Eigen::Vector2d::Zero();
       std::vector<size_t> near;
@@ -51,6 +52,7 @@ class Surfaces {
       // Along a line: the spread across it a small share of the spread along it.
       if (eig.eigenvalues()(0) > 0.04 * eig.eigenvalues()(1)) continue;
       normals_[i] = eig.eigenvectors().col(0);
+      means_[i] = mean;
     }
   }
   // The nearest earlier point with a normal within `within` of p, or -1.
@@ -68,6 +70,10 @@ class Surfaces {
   }
   const Eigen::Vector2d& point(long i) const { return points_[static_cast<size_t>(i)]; }
   const Eigen::Vector2d& normal(long i) const { return normals_[static_cast<size_t>(i)]; }
+  // The centroid of the neighbours the normal was fitted through, on the surface's middle:
+  // the nearest point itself lies anywhere across a noisy surface's thickness, and a later
+  // point's residual to it leans toward the shift the match stands at.
+  const Eigen::Vector2d& centre(long i) const { return means_[static_cast<size_t>(i)]; }
 
  private:
   int64_t key(const Eigen::Vector2d& p) const { return key(cellOf(p.x()), cellOf(p.y())); }
@@ -87,6 +93,7 @@ class Surfaces {
   }
   std::vector<Eigen::Vector2d> points_;
   std::vector<Eigen::Vector2d> normals_;
+  std::vector<Eigen::Vector2d> means_;
   double cell_;
   std::unordered_map<int64_t, std::vector<size_t>> cells_;
 };
@@ -108,6 +115,7 @@ void StereoScaleConfig::validate() const {
   if (!(normal_radius_m > 0.0)) fail("normal_radius_m", "positive metres");
   if (!(max_sigma_m > 0.0)) fail("max_sigma_m", "positive metres");
   if (max_iterations < 1) fail("max_iterations", "an integer >= 1");
+  if (passes < 1 || passes > 10) fail("passes", "an integer in [1, 10]");
   if (!(max_shift_m > 0.0)) fail("max_shift_m", "positive metres");
 }
 
@@ -117,8 +125,10 @@ void StereoScale::add(const StereoScale& other) {
   pairs += other.pairs;
 }
 
-StereoScale stereoDistanceScale(const TraverseLog& log, const StereoScaleConfig& config) {
-  config.validate();
+// One pass over the log at its (rescaled) odometry; each pair's stereo displacement is set
+// against the odometry's own displacement `original` for the same entries.
+static StereoScale onePass(const TraverseLog& log, const std::vector<Pose2>& original,
+                           const StereoScaleConfig& config) {
   StereoScale out;
   const size_t n = log.entries.size();
   const size_t half = static_cast<size_t>(config.half_window);
@@ -165,7 +175,7 @@ StereoScale stereoDistanceScale(const TraverseLog& log, const StereoScaleConfig&
         const long q = earlier.nearest(m, config.match_m);
         if (q < 0) continue;
         const Eigen::Vector2d& nq = earlier.normal(q);
-        const double r = nq.dot(m - earlier.point(q));
+        const double r = nq.dot(m - earlier.centre(q));
         const Eigen::Vector2d arm = m - pivot - x.head<2>();
         const Eigen::Vector3d jac(nq.x(), nq.y(), nq.x() * -arm.y() + nq.y() * arm.x());
         const double w = std::abs(r) <= 0.02 ? 1.0 : 0.02 / std::abs(r);
@@ -193,9 +203,35 @@ StereoScale stereoDistanceScale(const TraverseLog& log, const StereoScaleConfig&
     if (!(info_u > 0.0) || 1.0 / std::sqrt(info_u) > config.max_sigma_m) continue;
     const Eigen::Vector2d t = x.head<2>();
     const double d_s = u.dot(d_o + t);
-    out.sum_so += info_u * d_s * u.dot(d_o);
+    const double d_orig = u.dot(original[j].translation() - original[i].translation());
+    out.sum_so += info_u * d_s * d_orig;
     out.sum_ss += info_u * d_s * d_s;
     ++out.pairs;
+  }
+  return out;
+}
+
+StereoScale stereoDistanceScale(const TraverseLog& log, const StereoScaleConfig& config) {
+  config.validate();
+  std::vector<Pose2> original;
+  for (const TraverseEntry& e : log.entries) original.push_back(e.scan.odometry);
+  TraverseLog trial = log;
+  StereoScale out;
+  double start = 0.0;
+  for (int pass = 0; pass < config.passes; ++pass) {
+    // The matches lean toward the displacement they start from (a noisy surface matched to
+    // its own noise): each pass after the first starts from the odometry rescaled to the
+    // pass before's figure.
+    const double shrink = 1.0 / (1.0 + start);
+    for (size_t j = 1; start != 0.0 && j < log.entries.size(); ++j) {
+      const Pose2 u = original[j - 1].inverse() * original[j];
+      trial.entries[j].scan.odometry =
+          trial.entries[j - 1].scan.odometry *
+          Pose2(shrink * u.translation().x(), shrink * u.translation().y(), u.theta);
+    }
+    out = onePass(trial, original, config);
+    if (out.pairs == 0) break;
+    start = out.scale();
   }
   return out;
 }
