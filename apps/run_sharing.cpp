@@ -227,6 +227,7 @@ void endSortie(RobotRun& r, LocalSharedMap& live, double now, double reapproach_
                 rep.entries, rep.fixed ? "fixed" : "no fix", error.c_str(),
                 rep.posted ? ", posted" : "");
   std::string calibration;
+  r.result.calibration = r.calibration.bias();
   if (r.calibrate && r.calibration.weight_m() > 0.0) {
     char c[160];
     std::snprintf(c, sizeof c,

@@ -168,6 +168,10 @@ struct RobotRunResult {
   int sorties_fixed = 0;                // of them, localized there
   int sorties_posted = 0;               // of them, posted to the shared map
   std::vector<std::string> sortie_log;  // one line per sortie, for people
+  // The online odometry calibration after the last sortie (cooperative runs; zeros before
+  // the first): what the robot drives on, its distance scale from stereo when
+  // RunOptions::stereo_distance_scale.
+  OdometryBias calibration;
   // Each home-base fix of the sorties against the true pose (m, deg).
   std::vector<std::pair<double, double>> fix_errors;
   std::vector<StampedPose2> estimate;   // the robot's own pose estimate (map frame)

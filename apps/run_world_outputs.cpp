@@ -137,6 +137,11 @@ void writeOutputs(const RunOptions& opt, const sim::World& world, const RunResul
       std::string log;
       for (const std::string& line : r.sortie_log) log += (log.empty() ? "" : "; ") + line;
       j.value("sortie_log", log);
+      j.beginObject("odometry_calibration");
+      j.value("heading_drift_rad_per_m", r.calibration.heading_drift)
+          .value("turn_scale", r.calibration.turn_scale)
+          .value("distance_scale", r.calibration.distance_scale);
+      j.endObject();
       j.endObject();
     }
     j.beginArray("contacts");
