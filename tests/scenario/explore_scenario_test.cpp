@@ -68,7 +68,7 @@ TEST(ExploreScenarioTest, TheBuildingsMissionSettingsApplyUnlessTheCommandLineSa
   EXPECT_EQ(r.mission_settings->preferred_margin, 0.3);
   EXPECT_EQ(r.mission_settings->closures, "none");
   EXPECT_TRUE(r.mission_settings->stereo_distance_scale);
-  EXPECT_EQ(r.mission_settings->post_gate_m, 0.2);
+  EXPECT_EQ(r.mission_settings->post_gate_m, 0.0);
   EXPECT_EQ(r.mission_settings->recent_hits_s, 4.0);
   EXPECT_EQ(r.mission_settings->manhattan_sigma_deg, 0.6);
   EXPECT_EQ(r.mission_settings->wall_heading_gain, 0.5);
@@ -84,12 +84,12 @@ TEST(ExploreScenarioTest, TheBuildingsMissionSettingsApplyUnlessTheCommandLineSa
   o.floor_edge_depth = 0.0;
   o.closures = "self";
   o.stereo_distance_scale = false;
-  o.post_gate_m = 0.0;
+  o.post_gate_m = 0.2;
   r = runWorld(o);
   EXPECT_EQ(r.mission_settings->floor_edge_depth, 0.0);
   EXPECT_EQ(r.mission_settings->closures, "self");
   EXPECT_FALSE(r.mission_settings->stereo_distance_scale);
-  EXPECT_EQ(r.mission_settings->post_gate_m, 0.0);
+  EXPECT_EQ(r.mission_settings->post_gate_m, 0.2);
   EXPECT_TRUE(r.mission_settings->shaped_closures);
   EXPECT_EQ(r.mission_settings->safety_distance, 0.6);
   EXPECT_FALSE(r.mission_settings->retry_frontiers);
