@@ -352,8 +352,10 @@ int main(int argc, char** argv) {
   cmd_remap
       ->add_option("--oracle", remap.oracle,
                    "Take this part of each pose from the ground truth and the rest from --poses, "
-                   "to see which part of the pose error costs the map: position or heading")
-      ->check(CLI::IsMember({"position", "heading"}));
+                   "to see which part of the pose error costs the map: position, heading, or "
+                   "the position error's part along the true heading (along) or across it "
+                   "(across)")
+      ->check(CLI::IsMember({"position", "heading", "along", "across"}));
   cmd_remap->add_option("--out", remap.out_dir,
                         "Folder for map.{pgm,yaml,png} and map_evaluation.png");
 
@@ -422,10 +424,13 @@ int main(int argc, char** argv) {
       const coopmap::MapMetrics& m = r.metrics;
       std::string robots;
       for (const std::string& name : r.robots) robots += (robots.empty() ? "" : ", ") + name;
-      const std::string placed = remap.oracle.empty() ? remap.poses + " poses"
-                                 : remap.oracle == "position"
-                                     ? "true positions with the " + remap.poses + " headings"
-                                     : remap.poses + " positions with the true headings";
+      const std::string placed =
+          remap.oracle.empty()         ? remap.poses + " poses"
+          : remap.oracle == "position" ? "true positions with the " + remap.poses + " headings"
+          : remap.oracle == "heading"
+              ? remap.poses + " positions with the true headings"
+              : remap.poses + " poses with the position error " +
+                    (remap.oracle == "along" ? "along" : "across") + " the true heading taken out";
       std::printf(
           "%s: %zu radial maps (%s), %zu at their %s (%zu with no such pose, %zu too far "
           "from the truth",

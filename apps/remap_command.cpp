@@ -26,7 +26,24 @@ const Pose2* poseAt(const std::vector<StampedPose2>& trajectory, double stamp) {
   return &it->pose;
 }
 
+const char* const kOracles = "position, heading, along or across";
+
 }  // namespace
+
+Pose2 oraclePose(const Pose2& pose, const Pose2& truth, const std::string& oracle) {
+  if (oracle.empty()) return pose;
+  if (oracle == "position") return Pose2(truth.x, truth.y, pose.theta);
+  if (oracle == "heading") return Pose2(pose.x, pose.y, truth.theta);
+  if (oracle != "along" && oracle != "across")
+    throw std::invalid_argument("--oracle: expected " + std::string(kOracles) + ", got '" + oracle +
+                                "'");
+  const Eigen::Vector2d u(std::cos(truth.theta), std::sin(truth.theta));
+  const Eigen::Vector2d error = pose.translation() - truth.translation();
+  const Eigen::Vector2d along = error.dot(u) * u;
+  // The part the oracle does not name stays.
+  const Eigen::Vector2d kept = oracle == "along" ? error - along : along;
+  return Pose2(truth.x + kept.x(), truth.y + kept.y(), pose.theta);
+}
 
 RemapSummary runRemap(const RemapOptions& o) {
   const std::vector<std::string> kinds = {"logged", "corrected", "estimate", "odometry",
@@ -35,8 +52,7 @@ RemapSummary runRemap(const RemapOptions& o) {
     throw std::invalid_argument(
         "--poses: expected logged, corrected, estimate, odometry or groundtruth, got '" + o.poses +
         "'");
-  if (!o.oracle.empty() && o.oracle != "position" && o.oracle != "heading")
-    throw std::invalid_argument("--oracle: expected position or heading, got '" + o.oracle + "'");
+  oraclePose(Pose2(), Pose2(), o.oracle);  // throws for a bad name
   if (!(o.max_error_m >= 0.0) || !std::isfinite(o.max_error_m))
     throw std::invalid_argument("--max-error: expected metres >= 0 (0: every radial map)");
   const sim::World world = sim::loadWorld(o.world_file);
@@ -97,10 +113,7 @@ RemapSummary runRemap(const RemapOptions& o) {
           ++s.without_truth;
           continue;
         }
-        if (o.oracle == "position")
-          placed_at = Pose2(truth->x, truth->y, pose->theta);
-        else
-          placed_at.theta = truth->theta;
+        placed_at = oraclePose(*pose, *truth, o.oracle);
       }
       placed.push_back({e.scan.stamp, &e.scan, placed_at});
     }

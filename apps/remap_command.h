@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/geometry/pose2.h"
 #include "core/mapping/map_metrics.h"
 
 namespace coopmap {
@@ -20,8 +21,10 @@ struct RemapOptions {
   // > 0: only the radial maps whose pose is within this (m) of the ground truth, for an
   // oracle's choice of what to share
   double max_error_m = 0.0;
-  // "position" or "heading": that part of each pose from the ground truth, the rest from
-  // `poses` (which part of the pose error costs the map); "" (the default): none.
+  // "position", "heading", "along" or "across": that part of each pose from the ground
+  // truth, the rest from `poses` (which part of the pose error costs the map); "" (the
+  // default): none. "along" and "across" split the position error by the true heading: the
+  // part along the robot's travel (or facing), and the part across it.
   std::string oracle;
   std::string out_dir;  // if set: map.{pgm,yaml,png} and map_evaluation.png
 };
@@ -35,6 +38,10 @@ struct RemapSummary {
   size_t used = 0;
   MapMetrics metrics;  // against the world's true occupancy, as `coopmap run` scores
 };
+
+// `pose` with the part RemapOptions::oracle names taken from `truth`; `pose` for "". Throws
+// std::invalid_argument for another name.
+Pose2 oraclePose(const Pose2& pose, const Pose2& truth, const std::string& oracle);
 
 // Throws std::invalid_argument for bad options, std::runtime_error for unreadable or
 // corrupt inputs (naming the file).

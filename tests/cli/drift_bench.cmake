@@ -108,7 +108,7 @@ foreach(line IN LISTS truth_lines)
   endif()
 endforeach()
 file(WRITE "${WORK_DIR}/shifted/trajectory_jose_corrected.tum" "${shifted}")
-foreach(oracle none position heading)
+foreach(oracle none position along across heading)
   set(args "")
   if(NOT oracle STREQUAL "none")
     set(args --oracle ${oracle})
@@ -123,6 +123,14 @@ endforeach()
 if(NOT out MATCHES "at their corrected positions with the true headings")
   message(FATAL_ERROR "coopmap remap --oracle heading does not say what it placed:\n${out}")
 endif()
+# The shift split by the true heading: each part alone moves walls (the robot drives east and
+# north), neither is the whole shift (the position oracle's map) nor none of it.
+foreach(part along across)
+  if(scores_${part} STREQUAL scores_none OR scores_${part} STREQUAL scores_position)
+    message(FATAL_ERROR "remap --oracle ${part} took all or none of the shift: ${scores_${part}} "
+                        "(1 m off ${scores_none}, true positions ${scores_position})")
+  endif()
+endforeach()
 execute_process(COMMAND "${COOPMAP}" remap "${WORK_DIR}/run" --world "${SOURCE_DIR}/worlds/lab.yaml"
                         --poses groundtruth OUTPUT_VARIABLE out)
 string(REGEX MATCH "wall_recall (0\\.[0-9]+) false_occupied_rate (0\\.[0-9]+)" found "${out}")
