@@ -70,6 +70,12 @@ struct RobotRun {
 inline constexpr int kMinStereoScalePairs = 10;
 inline constexpr double kMaxStereoScale = 0.05;
 
+// How far a scripted traverse's home-base fix may move the robot, per metre driven (m/m,
+// rad/m): a generous bound on drifting odometry (the building's loop, 78 m: 5.3 m and 25
+// degrees off; the B-14's heading drift is 0.0055 rad/m).
+inline constexpr double kScriptedDriftPerMetre = 0.15;
+inline constexpr double kScriptedTurnDriftPerMetre = 0.01;
+
 // The robot whose true occupancy the shared map is measured against: the tallest (each
 // robot's truth is the world up to its swept height).
 inline const RobotRun& tallestRobot(const std::vector<RobotRun>& runs) {
@@ -85,10 +91,12 @@ HomeBase nominalHomeBase(const sim::World& world);
 void mergeSeen(OccupancyGrid& a, const OccupancyGrid& b);
 // The naive shared map: every radial map of every robot at its raw odometry pose.
 OccupancyGrid naiveSharedMap(const MapLimits& limits, const std::vector<RobotRun>& runs);
-// After a scripted run: the paper's two ways of sharing, the home-base protocol (localize at
-// the home base, correct the traverse with the heading-drift model, post it) and naive.
+// After a scripted run: the paper's two ways of sharing, the home-base protocol (each
+// robot's traverse one sortie of HomeBaseCooperation: localized at the home base, corrected,
+// checked against what is shared, posted) and naive. `closures`: the loop closures of the
+// corrections (CooperationConfig::setClosureKinds; checked by the caller).
 SharedMapResult shareMaps(const sim::World& world, const MapLimits& limits, const GridU8& floor,
-                          const std::vector<RobotRun>& runs);
+                          const std::vector<RobotRun>& runs, const std::string& closures);
 // The robot is back at the home base and has looked at it: localize, correct and post the
 // sortie (core/agent/cooperation.h), apply the fix to its estimate, import the shared map,
 // and send it out again (or stop it, without a trusted fix).

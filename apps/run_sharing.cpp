@@ -5,7 +5,6 @@
 
 #include "apps/robot_run.h"
 #include "core/correction/drift_correction.h"
-#include "core/correction/home_return.h"
 #include "core/correction/stereo_scale.h"
 #include "core/mapping/map_metrics.h"
 
@@ -53,34 +52,41 @@ OccupancyGrid naiveSharedMap(const MapLimits& limits, const std::vector<RobotRun
   return naive.grid();
 }
 
-// The paper's two ways of sharing: the home-base protocol (localize at the home base,
-// correct the traverse with the heading-drift model, post it) and naive posting.
+// The paper's two ways of sharing: the home-base protocol (each traverse one sortie of
+// HomeBaseCooperation: localized, corrected, checked, posted) and naive posting.
 SharedMapResult shareMaps(const sim::World& world, const MapLimits& limits, const GridU8& floor,
-                          const std::vector<RobotRun>& runs) {
+                          const std::vector<RobotRun>& runs, const std::string& closures) {
   SharedMapResult out;
   if (world.home_base.corners.size() != 2 || runs.empty()) return out;
   LocalSharedMap protocol(limits, OccupancyConfig{});
   const HomeBase nominal = nominalHomeBase(world);
+  // Each robot's traverse as one sortie of the autonomous runs' protocol
+  // (core/agent/cooperation.h): localized at the home base, corrected with the loop closures
+  // the world's autonomous runs use (`closures`: within the sortie by default; none in the
+  // building, where a corridor stretch fits the other half's map at the wrong place), checked
+  // against what is already shared (a return look that does not look like the shared map's
+  // home is not shared), posted. Its fix may be as far off as its odometry can have drifted
+  // over the whole traverse (kScriptedDriftPerMetre; at least what one autonomous sortie's
+  // may be).
   for (const RobotRun& r : runs) {
     const TraverseLog& log = r.mapper->traverse();
-    const HomeBaseProtocol p = runHomeBaseProtocol(log, nominal, world.home_base.arm_length);
-    if (p.result.status != HomeReturnStatus::kOk) {
-      out.refused.push_back(log.robot + ": " + toString(p.result.status));
-      continue;
-    }
-    CorrectionConfig config;
-    config.model = CorrectionModel::kHeadingDrift;
-    const CorrectionResult c = correctTraverse(log, p.result.observation, config);
-    if (!c.ok) {
-      out.refused.push_back(log.robot + ": " + c.message);
-      continue;
-    }
-    const PostResult posted = protocol.post(correctedPost(log, c.poses, 1));
-    if (posted.status == PostStatus::kAccepted) {
+    CooperationConfig config;
+    config.setClosureKinds(closures);
+    double path = 0.0;  // by the robot's own odometry
+    for (size_t i = 1; i < log.entries.size(); ++i)
+      path += (log.entries[i].scan.odometry.translation() -
+               log.entries[i - 1].scan.odometry.translation())
+                  .norm();
+    config.max_fix_jump_m = std::max(config.max_fix_jump_m, kScriptedDriftPerMetre * path);
+    config.max_fix_jump_rad = std::max(config.max_fix_jump_rad, kScriptedTurnDriftPerMetre * path);
+    HomeBaseCooperation coop(log.robot, nominal, world.home_base.arm_length, &protocol, config);
+    const SortieReport rep = coop.endSortie(log);
+    if (rep.posted) {
       ++out.posts_accepted;
       out.posted.push_back(log.robot);
     } else {
-      out.refused.push_back(log.robot + ": " + posted.reason);
+      out.refused.push_back(log.robot + ": " +
+                            (rep.fixed && !rep.post.reason.empty() ? rep.post.reason : rep.method));
     }
   }
   const GridU8& truth = tallestRobot(runs).truth;
