@@ -94,7 +94,7 @@ OccupancyGrid naiveSharedMap(const MapLimits& limits, const std::vector<RobotRun
 // After a scripted run: the paper's two ways of sharing, the home-base protocol (each
 // robot's traverse one sortie of HomeBaseCooperation: localized at the home base, corrected,
 // checked against what is shared, posted) and naive. `closures`: the loop closures of the
-// corrections (CooperationConfig::setClosureKinds; checked by the caller).
+// corrections, by CooperationConfig::setClosureKinds's names (checked by the caller).
 SharedMapResult shareMaps(const sim::World& world, const MapLimits& limits, const GridU8& floor,
                           const std::vector<RobotRun>& runs, const std::string& closures);
 // The robot is back at the home base and has looked at it: localize, correct and post the

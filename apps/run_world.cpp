@@ -439,9 +439,8 @@ RunResult runWorld(const RunOptions& opt) {
     shared.naive = computeMapMetrics(*shared.naive_grid, shared_truth, home_position, &floor);
     shared.computed = true;
   } else if (opt.share_maps) {
-    result.shared_map = shareMaps(
-        world, limits, floor, runs,
-        opt.closures.value_or(world.exploration.closures.value_or(opt.cooperation.closureKinds())));
+    // The paper's correction (the heading-drift model, no closures) unless --closures says.
+    result.shared_map = shareMaps(world, limits, floor, runs, opt.closures.value_or("none"));
   }
   result.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
