@@ -358,6 +358,10 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"position", "heading", "along", "across"}));
   cmd_remap->add_option("--out", remap.out_dir,
                         "Folder for map.{pgm,yaml,png} and map_evaluation.png");
+  cmd_remap->add_flag("--range-errors", remap.range_errors,
+                      "With --poses groundtruth: the radial maps' range errors against the "
+                      "world's true surfaces by range (median, robust sd, RMS), beside the "
+                      "stereo's modelled sigma and the share of errors within it");
 
   coopmap::RobotCommandOptions robot_options;
   auto* cmd_robot = app.add_subcommand(
@@ -445,6 +449,14 @@ int main(int argc, char** argv) {
         std::printf(" %s: %.4f", coopmap::MapMetrics::kDistanceBandNames[b],
                     m.false_occupied_by_distance[b]);
       std::printf("\n");
+      if (!r.range_errors.empty())
+        std::printf(
+            "range errors (m) by range: returns, outliers (no true surface within 0.5 m), "
+            "median, robust sd, RMS, modelled sigma, share within it\n");
+      for (const coopmap::RangeErrorBin& b : r.range_errors)
+        std::printf("  %.0f-%.0f m: %zu, %zu, %+.4f, %.4f, %.4f, %.4f, %.3f\n", b.from_m, b.to_m,
+                    b.returns, b.outliers, b.median_m, b.robust_sd_m, b.rms_m, b.mean_sigma_m,
+                    b.within_sigma);
     }
     if (cmd_drift->parsed()) {
       if (!drift_models.empty()) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 
 #include "core/correction/traverse_log.h"
@@ -30,6 +31,78 @@ const char* const kOracles = "position, heading, along or across";
 
 }  // namespace
 
+std::vector<RangeErrorBin> rangeErrors(const std::vector<TrueScan>& scans, const GridU8& truth,
+                                       double bin_m, double max_error_m) {
+  if (!(bin_m > 0.0) || !(max_error_m > 0.0))
+    throw std::invalid_argument("rangeErrors: bin_m and max_error_m must be positive");
+  const MapLimits& lim = truth.limits;
+  const double step = 0.25 * lim.resolution;
+  struct Acc {
+    size_t returns = 0, outliers = 0;
+    std::vector<double> errors, sigmas;
+  };
+  std::vector<Acc> acc;
+  for (const TrueScan& t : scans) {
+    const Eigen::Vector2d origin = t.pose * t.scan->sensor_origin;
+    for (const RadialReading& r : t.scan->readings) {
+      if (r.kind != RadialKind::kHit) continue;
+      const size_t bin = static_cast<size_t>(std::max(0.0, r.range) / bin_m);
+      if (bin >= acc.size()) acc.resize(bin + 1);
+      Acc& a = acc[bin];
+      ++a.returns;
+      const double a_ray = t.pose.theta + r.bearing;
+      const Eigen::Vector2d d(std::cos(a_ray), std::sin(a_ray));
+      // The first occupied cell along the ray, up to max_error_m past the range.
+      std::optional<double> surface;
+      for (double s = 0.0; s <= r.range + max_error_m; s += step) {
+        const Eigen::Vector2d q = origin + s * d;
+        const int ix = lim.cellX(q.x()), iy = lim.cellY(q.y());
+        if (!lim.contains(ix, iy)) break;
+        if (truth.at(ix, iy)) {
+          surface = s;
+          break;
+        }
+      }
+      if (!surface || std::abs(r.range - *surface) > max_error_m) {
+        ++a.outliers;
+        continue;
+      }
+      a.errors.push_back(r.range - *surface);
+      a.sigmas.push_back(r.sigma);
+    }
+  }
+  std::vector<RangeErrorBin> out;
+  for (size_t b = 0; b < acc.size(); ++b) {
+    Acc& a = acc[b];
+    if (a.returns == 0) continue;
+    RangeErrorBin bin;
+    bin.from_m = b * bin_m;
+    bin.to_m = (b + 1) * bin_m;
+    bin.returns = a.returns;
+    bin.outliers = a.outliers;
+    const size_t n = a.errors.size();
+    if (n > 0) {
+      double sum2 = 0.0, sigma = 0.0, within = 0.0;
+      for (size_t i = 0; i < n; ++i) {
+        sum2 += a.errors[i] * a.errors[i];
+        sigma += a.sigmas[i];
+        within += std::abs(a.errors[i]) <= a.sigmas[i] ? 1.0 : 0.0;
+      }
+      bin.rms_m = std::sqrt(sum2 / n);
+      bin.mean_sigma_m = sigma / n;
+      bin.within_sigma = within / n;
+      std::vector<double> e = a.errors;
+      std::nth_element(e.begin(), e.begin() + n / 2, e.end());
+      bin.median_m = e[n / 2];
+      for (double& x : e) x = std::abs(x - bin.median_m);
+      std::nth_element(e.begin(), e.begin() + n / 2, e.end());
+      bin.robust_sd_m = 1.4826 * e[n / 2];
+    }
+    out.push_back(bin);
+  }
+  return out;
+}
+
 Pose2 oraclePose(const Pose2& pose, const Pose2& truth, const std::string& oracle) {
   if (oracle.empty()) return pose;
   if (oracle == "position") return Pose2(truth.x, truth.y, pose.theta);
@@ -53,6 +126,11 @@ RemapSummary runRemap(const RemapOptions& o) {
         "--poses: expected logged, corrected, estimate, odometry or groundtruth, got '" + o.poses +
         "'");
   oraclePose(Pose2(), Pose2(), o.oracle);  // throws for a bad name
+  if (o.range_errors && (o.poses != "groundtruth" || !o.oracle.empty()))
+    throw std::invalid_argument(
+        "--range-errors: expected --poses groundtruth and no --oracle (the errors of the ranges "
+        "alone, at the true poses), got --poses " +
+        o.poses + (o.oracle.empty() ? "" : " --oracle " + o.oracle));
   if (!(o.max_error_m >= 0.0) || !std::isfinite(o.max_error_m))
     throw std::invalid_argument("--max-error: expected metres >= 0 (0: every radial map)");
   const sim::World world = sim::loadWorld(o.world_file);
@@ -120,6 +198,17 @@ RemapSummary runRemap(const RemapOptions& o) {
   }
   std::stable_sort(placed.begin(), placed.end(),
                    [](const Placed& a, const Placed& b) { return a.stamp < b.stamp; });
+  if (o.range_errors) {
+    // The true surfaces on a 1 cm grid: the 5 cm map's cells would add up to 2.5 cm.
+    MapLimits fine = limits;
+    fine.resolution = 0.01;
+    fine.width = static_cast<int>(std::ceil(limits.width * limits.resolution / fine.resolution));
+    fine.height = static_cast<int>(std::ceil(limits.height * limits.resolution / fine.resolution));
+    std::vector<TrueScan> scans;
+    scans.reserve(placed.size());
+    for (const Placed& p : placed) scans.push_back({p.scan, p.pose});
+    s.range_errors = rangeErrors(scans, sim::trueOccupancy(world, fine, swept));
+  }
   OccupancyGrid grid(limits, OccupancyConfig{});
   for (const Placed& p : placed) grid.insert(*p.scan, p.pose);
   s.used = placed.size();

@@ -8,7 +8,9 @@
 #include <vector>
 
 #include "core/geometry/pose2.h"
+#include "core/mapping/grid.h"
 #include "core/mapping/map_metrics.h"
+#include "core/perception/radial_map.h"
 
 namespace coopmap {
 
@@ -27,7 +29,37 @@ struct RemapOptions {
   // part along the robot's travel (or facing), and the part across it.
   std::string oracle;
   std::string out_dir;  // if set: map.{pgm,yaml,png} and map_evaluation.png
+  // With poses "groundtruth": also the radial maps' range errors against the world's true
+  // surfaces, by range (is the stereo's modelled range sigma what the ranges show?).
+  bool range_errors = false;
 };
+
+// The range errors of radial-map returns (measured range minus the true surface's along
+// the same ray) whose measured range falls in [from_m, to_m).
+struct RangeErrorBin {
+  double from_m = 0.0, to_m = 0.0;
+  size_t returns = 0;   // hit returns in the bin
+  size_t outliers = 0;  // of them, no true surface within max_error_m of the range
+  // Over the rest (the inliers):
+  double median_m = 0.0;
+  double robust_sd_m = 0.0;   // 1.4826 x the median absolute deviation from the median
+  double rms_m = 0.0;         // about zero
+  double mean_sigma_m = 0.0;  // the returns' modelled 1-sigma (RadialReading::sigma)
+  double within_sigma = 0.0;  // share with |error| <= their sigma (0.68 if it were right)
+};
+
+// One radial map at its true pose (the map frame of `truth`).
+struct TrueScan {
+  const RadialMap* scan = nullptr;
+  Pose2 pose;
+};
+
+// Range errors of the hit returns of `scans` against the true occupancy `truth` (1:
+// occupied; a fine grid, e.g. 1 cm, so that its cells' size does not add to the errors),
+// in bins of `bin_m` by measured range. A return whose ray meets no occupied cell within
+// `max_error_m` of its range (nearer or farther) is an outlier (a person, a phantom).
+std::vector<RangeErrorBin> rangeErrors(const std::vector<TrueScan>& scans, const GridU8& truth,
+                                       double bin_m = 1.0, double max_error_m = 0.5);
 
 struct RemapSummary {
   std::vector<std::string> robots;
@@ -37,6 +69,7 @@ struct RemapSummary {
   size_t without_truth = 0;  // of them, with --oracle, with no ground-truth pose of that stamp
   size_t used = 0;
   MapMetrics metrics;  // against the world's true occupancy, as `coopmap run` scores
+  std::vector<RangeErrorBin> range_errors;  // with RemapOptions::range_errors
 };
 
 // `pose` with the part RemapOptions::oracle names taken from `truth`; `pose` for "". Throws

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/support/radial_reading.h"
+
 namespace coopmap {
 namespace {
 
@@ -23,15 +25,6 @@ RadialMap scan(std::vector<RadialReading> readings) {
   m.max_range = 1.0;
   m.readings = std::move(readings);
   return m;
-}
-
-RadialReading hit(double bearing, double range, double sigma) {
-  RadialReading r;
-  r.bearing = bearing;
-  r.range = range;
-  r.sigma = sigma;
-  r.kind = RadialKind::kHit;
-  return r;
 }
 
 std::vector<int> row(const OccupancyGrid& g, int iy) {
