@@ -69,6 +69,10 @@ void CooperationConfig::validate() const {
         std::to_string(max_fix_jump_rad));
   home_return.validate();
   closure_alignment.validate();
+  if (manhattan_passes < 1)
+    throw std::invalid_argument(
+        "cooperation config: field 'manhattan_passes': expected an integer >= 1, got " +
+        std::to_string(manhattan_passes));
   if (self_closure_gap < 0)
     throw std::invalid_argument(
         "cooperation config: field 'self_closure_gap': expected an integer >= 0, got " +
@@ -380,6 +384,27 @@ SortieReport HomeBaseCooperation::endSortie(const TraverseLog& sortie,
     CorrectionConfig graph = config_.correction;
     graph.model = CorrectionModel::kPoseGraph;
     CorrectionResult g = correctTraverse(sortie, observation, graph, closures);
+    // The walls' turn is searched within a few degrees of the axes: where the first
+    // correction left the heading farther off, the walls give nothing. Found again on the
+    // graph's poses, where the headings found so far brought it within reach (see
+    // CooperationConfig::manhattan_passes).
+    size_t heading_count = headings.size();
+    for (int pass = 1; pass < config_.manhattan_passes && g.ok && config_.manhattan_sigma_rad > 0.0;
+         ++pass) {
+      std::vector<PoseObservation> again = manhattanHeadings(
+          sortie, g.poses, config_.closure_scans, config_.closure_stride,
+          config_.closure_alignment.max_range, config_.manhattan_sigma_rad, config_.manhattan);
+      if (again.size() <= heading_count) break;
+      std::vector<PoseObservation> all(closures.begin(),
+                                       closures.end() - static_cast<std::ptrdiff_t>(heading_count));
+      all.insert(all.end(), again.begin(), again.end());
+      CorrectionResult next = correctTraverse(sortie, observation, graph, all);
+      if (!next.ok) break;
+      closure_note += " (" + std::to_string(again.size()) + " when found again)";
+      heading_count = again.size();
+      closures = std::move(all);
+      g = std::move(next);
+    }
     if (g.ok) {
       c = std::move(g);
       rep.closures = static_cast<int>(closures.size());

@@ -103,6 +103,13 @@ struct CooperationConfig {
   // free by an xy_information of ~0 (PoseObservation has no heading-only kind).
   double manhattan_sigma_rad = 0.0;
   ManhattanConfig manhattan;
+  // Passes of the walls' headings: each after the first finds them again on the poses the
+  // one before corrected, and is kept when it found more. The walls' turn is searched
+  // within manhattan.search_rad of the axes, so a sortie whose first correction is further
+  // off gets no headings where it needs them (the building, seeds 1-24: 8-28 headings for
+  // ~900 radial maps, 1-5.6 deg off all along, up to 1.2 m). 3 passes against 1: wall_recall
+  // 0.948 -> 0.967, false_occupied_rate 0.0143 -> 0.0138, coverage >= 0.9 in 20 -> 23 runs.
+  int manhattan_passes = 3;
   void validate() const;  // throws std::invalid_argument naming the field
 
   // The loop closures by name: "none", "self" (within the sortie), "shared" (to the shared

@@ -47,6 +47,11 @@ TEST(CooperationTest, BadConfigurationNamesTheField) {
   c.manhattan_sigma_rad = -0.01;
   EXPECT_NE(refusal(c).find("manhattan_sigma_rad"), std::string::npos) << refusal(c);
   c = CooperationConfig{};
+  c.manhattan_passes = 0;
+  EXPECT_NE(refusal(c).find("'manhattan_passes': expected an integer >= 1, got 0"),
+            std::string::npos)
+      << refusal(c);
+  c = CooperationConfig{};
   c.manhattan.bin_m = 0.0;
   EXPECT_NE(refusal(c).find("bin_m"), std::string::npos) << refusal(c);
   c = CooperationConfig{};
