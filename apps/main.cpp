@@ -82,6 +82,13 @@ int main(int argc, char** argv) {
                    "With --explore: sorties at most (1: explore once, share after the run)")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
+  cmd_run
+      ->add_option("--published-band", run.published_band,
+                   "The shared map published (maps, metrics): each return drawn over this "
+                   "share of its modelled range sigma (the robots' own maps and the shared map "
+                   "they import: 1)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.05, 2.0));
   bool tracking = false;
   cmd_run->add_flag("--tracking", tracking,
                     "With --explore: between home-base fixes, track the estimate against the "
@@ -358,6 +365,12 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"position", "heading", "along", "across"}));
   cmd_remap->add_option("--out", remap.out_dir,
                         "Folder for map.{pgm,yaml,png} and map_evaluation.png");
+  cmd_remap
+      ->add_option("--band", remap.band,
+                   "Each return drawn over this share of its modelled range sigma (the "
+                   "published shared map's by default; 1: the robots' own maps')")
+      ->capture_default_str()
+      ->check(CLI::Range(0.05, 2.0));
   cmd_remap->add_flag("--range-errors", remap.range_errors,
                       "With --poses groundtruth: the radial maps' range errors against the "
                       "world's true surfaces by range (median, robust sd, RMS), beside the "
@@ -424,39 +437,7 @@ int main(int argc, char** argv) {
       }
     }
     if (cmd_remap->parsed()) {
-      const coopmap::RemapSummary r = coopmap::runRemap(remap);
-      const coopmap::MapMetrics& m = r.metrics;
-      std::string robots;
-      for (const std::string& name : r.robots) robots += (robots.empty() ? "" : ", ") + name;
-      const std::string placed =
-          remap.oracle.empty()         ? remap.poses + " poses"
-          : remap.oracle == "position" ? "true positions with the " + remap.poses + " headings"
-          : remap.oracle == "heading"
-              ? remap.poses + " positions with the true headings"
-              : remap.poses + " poses with the position error " +
-                    (remap.oracle == "along" ? "along" : "across") + " the true heading taken out";
-      std::printf(
-          "%s: %zu radial maps (%s), %zu at their %s (%zu with no such pose, %zu too far "
-          "from the truth",
-          remap.run_dir.c_str(), r.entries, robots.c_str(), r.used, placed.c_str(), r.without_pose,
-          r.too_far);
-      if (!remap.oracle.empty()) std::printf(", %zu with no true pose", r.without_truth);
-      std::printf(
-          ")\nwall_recall %.4f false_occupied_rate %.4f coverage %.4f\n"
-          "false obstacles by cells to the nearest true one:",
-          m.wall_recall, m.false_occupied_rate, m.coverage);
-      for (int b = 0; b < coopmap::MapMetrics::kDistanceBands; ++b)
-        std::printf(" %s: %.4f", coopmap::MapMetrics::kDistanceBandNames[b],
-                    m.false_occupied_by_distance[b]);
-      std::printf("\n");
-      if (!r.range_errors.empty())
-        std::printf(
-            "range errors (m) by range: returns, outliers (no true surface within 0.5 m), "
-            "median, robust sd, RMS, modelled sigma, share within it\n");
-      for (const coopmap::RangeErrorBin& b : r.range_errors)
-        std::printf("  %.0f-%.0f m: %zu, %zu, %+.4f, %.4f, %.4f, %.4f, %.3f\n", b.from_m, b.to_m,
-                    b.returns, b.outliers, b.median_m, b.robust_sd_m, b.rms_m, b.mean_sigma_m,
-                    b.within_sigma);
+      coopmap::printRemapSummary(remap, coopmap::runRemap(remap));
     }
     if (cmd_drift->parsed()) {
       if (!drift_models.empty()) {
@@ -581,11 +562,13 @@ int main(int argc, char** argv) {
       if (r.shared_map.computed)
         std::printf(
             "shared map (home-base protocol, %d posts): wall_recall %.3f, false_occupied_rate "
-            "%.4f, coverage %.3f; naive sharing: %.3f, %.4f, %.3f\n",
+            "%.4f, coverage %.3f; naive sharing: %.3f, %.4f, %.3f; as the robots import it: "
+            "%.3f, %.4f\n",
             r.shared_map.posts_accepted, r.shared_map.protocol.wall_recall,
             r.shared_map.protocol.false_occupied_rate, r.shared_map.protocol.coverage,
             r.shared_map.naive.wall_recall, r.shared_map.naive.false_occupied_rate,
-            r.shared_map.naive.coverage);
+            r.shared_map.naive.coverage, r.shared_map.imported.wall_recall,
+            r.shared_map.imported.false_occupied_rate);
       for (const auto& robot : r.robots)
         for (const std::string& line : robot.sortie_log)
           std::printf("%s %s\n", robot.name.c_str(), line.c_str());

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <optional>
 #include <stdexcept>
@@ -209,7 +210,9 @@ RemapSummary runRemap(const RemapOptions& o) {
     for (const Placed& p : placed) scans.push_back({p.scan, p.pose});
     s.range_errors = rangeErrors(scans, sim::trueOccupancy(world, fine, swept));
   }
-  OccupancyGrid grid(limits, OccupancyConfig{});
+  OccupancyConfig config;
+  config.sigma_scale = o.band;
+  OccupancyGrid grid(limits, config);
   for (const Placed& p : placed) grid.insert(*p.scan, p.pose);
   s.used = placed.size();
   const Eigen::Vector2d home = world.robots.empty() ? limits.origin + Eigen::Vector2d(1, 1)
@@ -222,6 +225,40 @@ RemapSummary runRemap(const RemapOptions& o) {
     writeFileAtomic(o.out_dir + "/map_evaluation.png", encodeEvaluationPng(grid, truth, 3, &floor));
   }
   return s;
+}
+
+void printRemapSummary(const RemapOptions& o, const RemapSummary& r) {
+  const MapMetrics& m = r.metrics;
+  std::string robots;
+  for (const std::string& name : r.robots) robots += (robots.empty() ? "" : ", ") + name;
+  const std::string placed =
+      o.oracle.empty()         ? o.poses + " poses"
+      : o.oracle == "position" ? "true positions with the " + o.poses + " headings"
+      : o.oracle == "heading"
+          ? o.poses + " positions with the true headings"
+          : o.poses + " poses with the position error " +
+                (o.oracle == "along" ? "along" : "across") + " the true heading taken out";
+  std::printf(
+      "%s: %zu radial maps (%s), %zu at their %s, drawn over %.2f of their range sigma (%zu "
+      "with no such pose, %zu too far from the truth",
+      o.run_dir.c_str(), r.entries, robots.c_str(), r.used, placed.c_str(), o.band, r.without_pose,
+      r.too_far);
+  if (!o.oracle.empty()) std::printf(", %zu with no true pose", r.without_truth);
+  std::printf(
+      ")\nwall_recall %.4f false_occupied_rate %.4f coverage %.4f\n"
+      "false obstacles by cells to the nearest true one:",
+      m.wall_recall, m.false_occupied_rate, m.coverage);
+  for (int b = 0; b < MapMetrics::kDistanceBands; ++b)
+    std::printf(" %s: %.4f", MapMetrics::kDistanceBandNames[b], m.false_occupied_by_distance[b]);
+  std::printf("\n");
+  if (!r.range_errors.empty())
+    std::printf(
+        "range errors (m) by range: returns, outliers (no true surface within 0.5 m), "
+        "median, robust sd, RMS, modelled sigma, share within it\n");
+  for (const RangeErrorBin& b : r.range_errors)
+    std::printf("  %.0f-%.0f m: %zu, %zu, %+.4f, %.4f, %.4f, %.4f, %.3f\n", b.from_m, b.to_m,
+                b.returns, b.outliers, b.median_m, b.robust_sd_m, b.rms_m, b.mean_sigma_m,
+                b.within_sigma);
 }
 
 }  // namespace coopmap

@@ -11,6 +11,7 @@
 #include "core/mapping/grid.h"
 #include "core/mapping/map_metrics.h"
 #include "core/perception/radial_map.h"
+#include "core/sharing/shared_map.h"
 
 namespace coopmap {
 
@@ -29,6 +30,9 @@ struct RemapOptions {
   // part along the robot's travel (or facing), and the part across it.
   std::string oracle;
   std::string out_dir;  // if set: map.{pgm,yaml,png} and map_evaluation.png
+  // The map's band, as OccupancyConfig::sigma_scale: the published shared map's by default
+  // (`coopmap run --published-band`), 1 for the band the robots' own maps have.
+  double band = kPublishedSigmaScale;
   // With poses "groundtruth": also the radial maps' range errors against the world's true
   // surfaces, by range (is the stereo's modelled range sigma what the ranges show?).
   bool range_errors = false;
@@ -79,5 +83,8 @@ Pose2 oraclePose(const Pose2& pose, const Pose2& truth, const std::string& oracl
 // Throws std::invalid_argument for bad options, std::runtime_error for unreadable or
 // corrupt inputs (naming the file).
 RemapSummary runRemap(const RemapOptions& options);
+
+// Prints `summary` (of `runRemap(options)`) to stdout.
+void printRemapSummary(const RemapOptions& options, const RemapSummary& summary);
 
 }  // namespace coopmap

@@ -90,13 +90,17 @@ HomeBase nominalHomeBase(const sim::World& world);
 // Adds `b`'s evidence to `a` (log-odds summed and clamped, seen where either has seen).
 void mergeSeen(OccupancyGrid& a, const OccupancyGrid& b);
 // The naive shared map: every radial map of every robot at its raw odometry pose.
-OccupancyGrid naiveSharedMap(const MapLimits& limits, const std::vector<RobotRun>& runs);
+// `published`: the shared map's published update rule (LocalSharedMap).
+OccupancyGrid naiveSharedMap(const MapLimits& limits, const std::vector<RobotRun>& runs,
+                             const OccupancyConfig& published);
 // After a scripted run: the paper's two ways of sharing, the home-base protocol (each
 // robot's traverse one sortie of HomeBaseCooperation: localized at the home base, corrected,
 // checked against what is shared, posted) and naive. `closures`: the loop closures of the
-// corrections, by CooperationConfig::setClosureKinds's names (checked by the caller).
+// corrections, by CooperationConfig::setClosureKinds's names (checked by the caller). Both
+// maps are the published grids of `published`'s rule.
 SharedMapResult shareMaps(const sim::World& world, const MapLimits& limits, const GridU8& floor,
-                          const std::vector<RobotRun>& runs, const std::string& closures);
+                          const std::vector<RobotRun>& runs, const std::string& closures,
+                          const OccupancyConfig& published);
 // The robot is back at the home base and has looked at it: localize, correct and post the
 // sortie (core/agent/cooperation.h), apply the fix to its estimate, import the shared map,
 // and send it out again (or stop it, without a trusted fix).

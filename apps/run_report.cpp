@@ -66,6 +66,9 @@ void writeRunReport(const RunOptions& opt, const std::string& world_name, const 
     row("shared map (home-base protocol, " + std::to_string(shared.posts_accepted) + " posts)",
         metrics(shared.protocol));
     row("shared map, naive sharing", metrics(shared.naive));
+    row("shared map as the robots import it (their maps' band)",
+        "wall_recall " + fixed(shared.imported.wall_recall, 3) + ", false_occupied_rate " +
+            fixed(shared.imported.false_occupied_rate, 4));
     std::string refused;
     for (const std::string& r : shared.refused) refused += (refused.empty() ? "" : "; ") + r;
     if (!refused.empty()) row("not shared", refused);

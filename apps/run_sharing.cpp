@@ -34,8 +34,9 @@ void mergeSeen(OccupancyGrid& a, const OccupancyGrid& b) {
 }
 
 // The naive shared map: every radial map of every robot at its raw odometry pose.
-OccupancyGrid naiveSharedMap(const MapLimits& limits, const std::vector<RobotRun>& runs) {
-  LocalSharedMap naive(limits, OccupancyConfig{});
+OccupancyGrid naiveSharedMap(const MapLimits& limits, const std::vector<RobotRun>& runs,
+                             const OccupancyConfig& published) {
+  LocalSharedMap naive(limits, OccupancyConfig{}, "", published);
   for (const RobotRun& r : runs) {
     TraverseLog log = r.mapper->traverse();
     const std::vector<Pose2>& raw = r.raw;
@@ -49,16 +50,17 @@ OccupancyGrid naiveSharedMap(const MapLimits& limits, const std::vector<RobotRun
     });
     naive.post(post);
   }
-  return naive.grid();
+  return naive.publishedGrid();
 }
 
 // The paper's two ways of sharing: the home-base protocol (each traverse one sortie of
 // HomeBaseCooperation: localized, corrected, checked, posted) and naive posting.
 SharedMapResult shareMaps(const sim::World& world, const MapLimits& limits, const GridU8& floor,
-                          const std::vector<RobotRun>& runs, const std::string& closures) {
+                          const std::vector<RobotRun>& runs, const std::string& closures,
+                          const OccupancyConfig& published) {
   SharedMapResult out;
   if (world.home_base.corners.size() != 2 || runs.empty()) return out;
-  LocalSharedMap protocol(limits, OccupancyConfig{});
+  LocalSharedMap protocol(limits, OccupancyConfig{}, "", published);
   const HomeBase nominal = nominalHomeBase(world);
   // Each robot's traverse as one sortie of the autonomous runs' protocol
   // (core/agent/cooperation.h): localized at the home base, corrected (with the loop
@@ -93,9 +95,10 @@ SharedMapResult shareMaps(const sim::World& world, const MapLimits& limits, cons
   const Eigen::Vector2d start = runs.front().result.groundtruth.empty()
                                     ? world.robots.front().start.translation()
                                     : runs.front().result.groundtruth.front().pose.translation();
-  out.protocol_grid = protocol.grid();
-  out.naive_grid = naiveSharedMap(limits, runs);
+  out.protocol_grid = protocol.publishedGrid();
+  out.naive_grid = naiveSharedMap(limits, runs, published);
   out.protocol = computeMapMetrics(*out.protocol_grid, truth, start, &floor);
+  out.imported = computeMapMetrics(protocol.grid(), truth, start, &floor);
   out.naive = computeMapMetrics(*out.naive_grid, truth, start, &floor);
   out.computed = true;
   return out;

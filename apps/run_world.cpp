@@ -80,8 +80,12 @@ RunResult runWorld(const RunOptions& opt) {
     throw std::invalid_argument("--sorties: expected at least 1");
   if (!(opt.timeline_period_s > 0.0))
     throw std::invalid_argument("timeline period: expected a positive number of seconds");
+  if (!(opt.published_band > 0.0))
+    throw std::invalid_argument("published band: expected a positive share of the range sigma");
+  OccupancyConfig published;
+  published.sigma_scale = opt.published_band;
   std::optional<LocalSharedMap> live;
-  if (cooperative) live.emplace(limits, OccupancyConfig{});
+  if (cooperative) live.emplace(limits, OccupancyConfig{}, "", published);
   std::vector<RobotRun> runs;
   std::optional<RunResult::MissionSettings> settings;
   for (int i = 0; i < robot_count; ++i) {
@@ -250,7 +254,7 @@ RunResult runWorld(const RunOptions& opt) {
     TimelineSample out;
     out.t = t;
     std::optional<OccupancyGrid> merged;
-    if (live) merged = live->grid();
+    if (live) merged = live->publishedGrid();
     for (RobotRun& r : runs) {
       const Pose2 truth = sim.truePose(r.driver->index());
       const Pose2 estimate = r.mapper->estimate(r.odo);
@@ -425,8 +429,8 @@ RunResult runWorld(const RunOptions& opt) {
   }
   if (cooperative) {
     SharedMapResult& shared = result.shared_map;
-    shared.protocol_grid = live->grid();
-    shared.naive_grid = naiveSharedMap(limits, runs);
+    shared.protocol_grid = live->publishedGrid();
+    shared.naive_grid = naiveSharedMap(limits, runs, published);
     for (const RobotRun& r : runs) {
       shared.posts_accepted += r.result.sorties_posted;
       if (r.result.sorties_posted > 0) shared.posted.push_back(r.result.name);
@@ -436,11 +440,13 @@ RunResult runWorld(const RunOptions& opt) {
                                    rep.method);
     }
     shared.protocol = computeMapMetrics(*shared.protocol_grid, shared_truth, home_position, &floor);
+    shared.imported = computeMapMetrics(live->grid(), shared_truth, home_position, &floor);
     shared.naive = computeMapMetrics(*shared.naive_grid, shared_truth, home_position, &floor);
     shared.computed = true;
   } else if (opt.share_maps) {
     // The paper's correction (the heading-drift model, no closures) unless --closures says.
-    result.shared_map = shareMaps(world, limits, floor, runs, opt.closures.value_or("none"));
+    result.shared_map =
+        shareMaps(world, limits, floor, runs, opt.closures.value_or("none"), published);
   }
   result.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();

@@ -17,6 +17,7 @@
 #include "core/mapping/occupancy_grid.h"
 #include "core/perception/radial_map.h"
 #include "core/robot/robot_interface.h"
+#include "core/sharing/shared_map.h"
 
 namespace coopmap {
 
@@ -65,6 +66,10 @@ struct RunOptions {
   // A robot whose first fix at the end of a sortie puts it farther than this (m) from its
   // start drives there by that fix and looks again before the sortie is corrected.
   double reapproach_m = 0.1;
+  // The band of the shared map the run publishes (outputs, metrics: the protocol's and the
+  // naive one's alike), as OccupancyConfig::sigma_scale; the robots' maps and the shared map
+  // they import keep the default's (core/sharing/shared_map.h).
+  double published_band = kPublishedSigmaScale;
   // Between fixes, track the robot's estimate against the shared map it imported at home
   // (core/agent/map_tracker.h). Off by default: on the lab (10 seeds) it brought 23 contacts
   // against 6 without, at the same map quality (its 6-scan alignments turn the estimate by
@@ -194,8 +199,11 @@ struct RunTiming {
 // The shared maps of a run (RunOptions::share_maps).
 struct SharedMapResult {
   bool computed = false;
-  MapMetrics protocol;               // robots' traverses corrected at the home base, posted
-  MapMetrics naive;                  // every radial map at its odometry pose, posted as taken
+  MapMetrics protocol;  // robots' traverses corrected at the home base, posted
+  MapMetrics naive;     // every radial map at its odometry pose, posted as taken
+  // The protocol's shared grid the robots import (RunOptions::published_band aside: the
+  // robots' band), for comparison with the published `protocol`.
+  MapMetrics imported;
   int posts_accepted = 0;            // corrected posts the shared map accepted
   std::vector<std::string> posted;   // robots whose corrected traverse entered
   std::vector<std::string> refused;  // robots without a home-base fix ("name: reason")

@@ -64,6 +64,11 @@ void writeOutputs(const RunOptions& opt, const sim::World& world, const RunResul
       j.endObject();
       if (std::string(key) == "shared_map") {
         j.value("posts_accepted", shared.posts_accepted);
+        j.value("published_band", opt.published_band);
+        j.beginObject("imported");  // the shared grid the robots import, at their band
+        j.value("wall_recall", shared.imported.wall_recall);
+        j.value("false_occupied_rate", shared.imported.false_occupied_rate);
+        j.endObject();
         std::string posted, refused;
         for (const std::string& r : shared.posted) posted += (posted.empty() ? "" : ", ") + r;
         for (const std::string& r : shared.refused) refused += (refused.empty() ? "" : "; ") + r;

@@ -23,6 +23,7 @@ struct OccupancyConfig {
   double sigma_scale = 1.0;     // uncertainty half-width = sigma_scale * range sigma
 
   void validate() const;  // throws std::invalid_argument naming the field
+  bool operator==(const OccupancyConfig&) const = default;
 };
 
 class OccupancyGrid {

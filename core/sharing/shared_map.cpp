@@ -13,7 +13,7 @@ namespace coopmap {
 namespace {
 
 constexpr char kMagic[8] = {'C', 'M', 'S', 'H', 'A', 'R', 'E', 'M'};
-constexpr uint32_t kFormatVersion = 1;
+constexpr uint32_t kFormatVersion = 2;
 
 // Why a scan cannot be applied, or empty.
 std::string checkScan(const PostedScan& s, const MapLimits& limits, size_t index) {
@@ -48,15 +48,19 @@ const char* toString(PostStatus s) {
 }
 
 LocalSharedMap::LocalSharedMap(const MapLimits& limits, const OccupancyConfig& config,
-                               const std::string& folder)
-    : grid_(limits, config) {
+                               const std::string& folder,
+                               const std::optional<OccupancyConfig>& published)
+    : grid_(limits, config),
+      published_(limits, published.value_or(config)),
+      separate_(published && !(*published == config)) {
   if (folder.empty()) return;
   std::filesystem::create_directories(folder);
   file_ = folder + "/shared_map.bin";
   if (std::filesystem::exists(file_)) load(file_);
 }
 
-std::string LocalSharedMap::encodeSnapshot(const OccupancyGrid& grid, uint64_t version,
+std::string LocalSharedMap::encodeSnapshot(const OccupancyGrid& grid,
+                                           const OccupancyGrid& published, uint64_t version,
                                            const std::map<std::string, uint64_t>& last_posts) {
   ByteWriter w;
   w.out.append(kMagic, sizeof(kMagic));
@@ -74,10 +78,12 @@ std::string LocalSharedMap::encodeSnapshot(const OccupancyGrid& grid, uint64_t v
     w.putBytes(robot);
     w.put<uint64_t>(id);
   }
-  const auto& lo = grid.logOddsGrid().cells;
-  const auto& seen = grid.seenGrid().cells;
-  w.out.append(reinterpret_cast<const char*>(lo.data()), lo.size() * sizeof(int16_t));
-  w.out.append(reinterpret_cast<const char*>(seen.data()), seen.size());
+  for (const OccupancyGrid* g : {&grid, &published}) {
+    const auto& lo = g->logOddsGrid().cells;
+    const auto& seen = g->seenGrid().cells;
+    w.out.append(reinterpret_cast<const char*>(lo.data()), lo.size() * sizeof(int16_t));
+    w.out.append(reinterpret_cast<const char*>(seen.data()), seen.size());
+  }
   w.put<uint32_t>(crc32Of(w.out.data(), w.out.size()));
   return w.out;
 }
@@ -95,8 +101,8 @@ void LocalSharedMap::load(const std::string& path) {
   }
   ByteReader r(bytes, sizeof(kMagic), bytes.size() - 4);
   const uint32_t format = r.get<uint32_t>();
-  if (format != kFormatVersion)
-    fail("shared map format version " + std::to_string(format) + " (this build reads " +
+  if (format != 1 && format != kFormatVersion)
+    fail("shared map format version " + std::to_string(format) + " (this build reads 1 and " +
          std::to_string(kFormatVersion) + ")");
   const double resolution = r.get<double>();
   const double ox = r.get<double>(), oy = r.get<double>();
@@ -118,14 +124,22 @@ void LocalSharedMap::load(const std::string& path) {
     last[name] = r.get<uint64_t>();
   }
   const size_t cells = l.size();
-  if (r.left() != cells * 3)
-    fail("expected " + std::to_string(cells * 3) + " bytes of map layers, found " +
+  const size_t grids = format == 1 ? 1 : 2;
+  if (r.left() != grids * cells * 3)
+    fail("expected " + std::to_string(grids * cells * 3) + " bytes of map layers, found " +
          std::to_string(r.left()));
-  std::vector<int16_t> lo(cells);
-  std::vector<uint8_t> seen(cells);
-  r.getBytes(lo.data(), cells * sizeof(int16_t));
-  r.getBytes(seen.data(), cells);
-  grid_.assign(lo, seen);
+  for (OccupancyGrid* g : {&grid_, &published_}) {
+    std::vector<int16_t> lo(cells);
+    std::vector<uint8_t> seen(cells);
+    if (g == &grid_ || grids == 2) {
+      r.getBytes(lo.data(), cells * sizeof(int16_t));
+      r.getBytes(seen.data(), cells);
+    } else {
+      lo = grid_.logOddsGrid().cells;
+      seen = grid_.seenGrid().cells;
+    }
+    g->assign(lo, seen);
+  }
   version_ = version;
   last_post_ = std::move(last);
 }
@@ -155,11 +169,16 @@ PostResult LocalSharedMap::post(const MapPost& post) {
   }
   OccupancyGrid next = grid_;
   for (const PostedScan& s : post.scans) next.insert(s.scan, s.pose);
+  OccupancyGrid next_published = separate_ ? published_ : next;
+  if (separate_)
+    for (const PostedScan& s : post.scans) next_published.insert(s.scan, s.pose);
   std::map<std::string, uint64_t> next_last = last_post_;
   next_last[post.robot] = post.post_id;
   // Durable before acknowledged.
-  if (!file_.empty()) writeFileAtomic(file_, encodeSnapshot(next, version_ + 1, next_last));
+  if (!file_.empty())
+    writeFileAtomic(file_, encodeSnapshot(next, next_published, version_ + 1, next_last));
   grid_ = std::move(next);
+  published_ = std::move(next_published);
   last_post_ = std::move(next_last);
   ++version_;
   result.status = PostStatus::kAccepted;
@@ -175,6 +194,11 @@ SharedMapSnapshot LocalSharedMap::snapshot() const {
 OccupancyGrid LocalSharedMap::grid() const {
   std::lock_guard<std::mutex> lock(mutex_);
   return grid_;
+}
+
+OccupancyGrid LocalSharedMap::publishedGrid() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return published_;
 }
 
 uint64_t LocalSharedMap::version() const {

@@ -1,6 +1,7 @@
 #include "core/sharing/shared_map.h"
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <limits>
 #include <stdexcept>
@@ -9,32 +10,34 @@
 #include <gtest/gtest.h>
 
 #include "core/io/atomic_file.h"
+#include "core/io/binary_io.h"
 
 namespace coopmap {
 namespace {
 
 const MapLimits kLimits = MapLimits::covering({0.0, 0.0}, {6.0, 4.0}, 0.05);
 
-// A scan seeing a wall 2 m ahead across a 60 degree fan.
-RadialMap wallScan() {
+// A scan seeing a wall 2 m ahead across a 60 degree fan, each return of range sigma `sigma`.
+RadialMap wallScan(double sigma = 0.02) {
   RadialMap m;
   m.max_range = 4.0;
   for (int k = 0; k < 31; ++k) {
     RadialReading r;
     r.bearing = (15 - k) * M_PI / 90.0;
     r.range = 2.0 / std::cos(r.bearing);
-    r.sigma = 0.02;
+    r.sigma = sigma;
     r.kind = RadialKind::kHit;
     m.readings.push_back(r);
   }
   return m;
 }
 
-MapPost postOf(const std::string& robot, uint64_t id, int scans, const Pose2& pose) {
+MapPost postOf(const std::string& robot, uint64_t id, int scans, const Pose2& pose,
+               double sigma = 0.02) {
   MapPost p;
   p.robot = robot;
   p.post_id = id;
-  for (int i = 0; i < scans; ++i) p.scans.push_back({wallScan(), pose});
+  for (int i = 0; i < scans; ++i) p.scans.push_back({wallScan(sigma), pose});
   return p;
 }
 
@@ -132,7 +135,8 @@ TEST(SharedMapTest, CorruptOrForeignSnapshotsAreReported) {
     EXPECT_EQ(std::string(e.what()),
               file + ": checksum mismatch (the file is corrupt or truncated)");
   }
-  writeFileAtomic(file, LocalSharedMap::encodeSnapshot(OccupancyGrid(kLimits, {}), 3, {}));
+  writeFileAtomic(file, LocalSharedMap::encodeSnapshot(OccupancyGrid(kLimits, {}),
+                                                       OccupancyGrid(kLimits, {}), 3, {}));
   const MapLimits other = MapLimits::covering({0.0, 0.0}, {6.0, 4.0}, 0.1);
   try {
     LocalSharedMap map(other, {}, dir);
@@ -140,6 +144,91 @@ TEST(SharedMapTest, CorruptOrForeignSnapshotsAreReported) {
   } catch (const std::runtime_error& e) {
     EXPECT_EQ(std::string(e.what()),
               file + ": made for other map limits (120 x 80 cells of 0.050000 m)");
+  }
+}
+
+// Occupied cells of `g` in the rows of the posts' fan (y 2.0 +- 0.5 m) whose centre is more
+// than a cell from the true wall at x = 3 m (posts from (1, 2) facing +x).
+int offWallCells(const OccupancyGrid& g) {
+  int n = 0;
+  const MapLimits& l = g.limits();
+  for (int iy = l.cellY(1.5); iy <= l.cellY(2.5); ++iy)
+    for (int ix = 0; ix < l.width; ++ix)
+      n += g.state(ix, iy) == CellState::kOccupied &&
+           std::abs(l.origin.x() + (ix + 0.5) * l.resolution - 3.0) > l.resolution;
+  return n;
+}
+
+TEST(SharedMapTest, ThePublishedGridDrawsTheSamePostsOverItsOwnBand) {
+  OccupancyConfig narrow;
+  narrow.sigma_scale = 0.5;
+  LocalSharedMap map(kLimits, {}, "", narrow);
+  EXPECT_EQ(map.publishedConfig().sigma_scale, 0.5);
+  EXPECT_EQ(map.config().sigma_scale, 1.0);
+  // Returns of 10 cm sigma at 2 m, all on the wall: the shared grid draws them +-10 cm, the
+  // published one +-5 cm.
+  ASSERT_EQ(map.post(postOf("jose", 1, 10, Pose2(1.0, 2.0, 0.0), 0.1)).status,
+            PostStatus::kAccepted);
+  const OccupancyGrid shared = map.grid(), published = map.publishedGrid();
+  for (const OccupancyGrid* g : {&shared, &published})
+    EXPECT_TRUE(g->state(kLimits.cellX(2.975), kLimits.cellY(2.0)) == CellState::kOccupied ||
+                g->state(kLimits.cellX(3.025), kLimits.cellY(2.0)) == CellState::kOccupied);
+  const int shared_off = offWallCells(shared), published_off = offWallCells(published);
+  EXPECT_GT(shared_off, 10);
+  EXPECT_LT(published_off, shared_off / 2) << "shared " << shared_off;
+  // What the robots import is the shared grid.
+  EXPECT_EQ(map.snapshot().log_odds, shared.logOddsGrid().cells);
+  // Without a published rule of its own, the published grid is the shared one.
+  LocalSharedMap one(kLimits, {});
+  one.post(postOf("jose", 1, 10, Pose2(1.0, 2.0, 0.0), 0.1));
+  EXPECT_EQ(one.publishedGrid().logOddsGrid().cells, one.grid().logOddsGrid().cells);
+  EXPECT_EQ(one.grid().logOddsGrid().cells, shared.logOddsGrid().cells);
+}
+
+TEST(SharedMapTest, BothGridsSurviveARestartAndVersionOneSnapshotsAreRead) {
+  const std::string dir = freshFolder("published");
+  OccupancyConfig narrow;
+  narrow.sigma_scale = 0.5;
+  OccupancyGrid shared(kLimits, {}), published(kLimits, narrow);
+  {
+    LocalSharedMap map(kLimits, {}, dir, narrow);
+    map.post(postOf("jose", 1, 10, Pose2(1.0, 2.0, 0.0), 0.1));
+    shared = map.grid();
+    published = map.publishedGrid();
+  }
+  ASSERT_NE(shared.logOddsGrid().cells, published.logOddsGrid().cells);
+  LocalSharedMap restarted(kLimits, {}, dir, narrow);
+  EXPECT_EQ(restarted.version(), 1u);
+  EXPECT_EQ(restarted.grid().logOddsGrid().cells, shared.logOddsGrid().cells);
+  EXPECT_EQ(restarted.publishedGrid().logOddsGrid().cells, published.logOddsGrid().cells);
+  EXPECT_EQ(restarted.publishedGrid().seenGrid().cells, published.seenGrid().cells);
+  // A version 1 file (one grid): the same bytes without the published layers, its
+  // published grid a copy of the shared one.
+  const std::string file = dir + "/shared_map.bin";
+  std::string bytes = readFile(file);
+  const size_t layers = kLimits.size() * 3;
+  bytes.resize(bytes.size() - 4 - layers);
+  const uint32_t v1 = 1;
+  std::memcpy(bytes.data() + 8, &v1, 4);
+  ByteWriter crc;
+  crc.put<uint32_t>(crc32Of(bytes.data(), bytes.size()));
+  writeFileAtomic(file, bytes + crc.out);
+  LocalSharedMap old(kLimits, {}, dir, narrow);
+  EXPECT_EQ(old.version(), 1u);
+  EXPECT_EQ(old.grid().logOddsGrid().cells, shared.logOddsGrid().cells);
+  EXPECT_EQ(old.publishedGrid().logOddsGrid().cells, shared.logOddsGrid().cells);
+  // A file of another format version is refused, naming it.
+  const uint32_t v7 = 7;
+  std::memcpy(bytes.data() + 8, &v7, 4);
+  ByteWriter crc7;
+  crc7.put<uint32_t>(crc32Of(bytes.data(), bytes.size()));
+  writeFileAtomic(file, bytes + crc7.out);
+  try {
+    LocalSharedMap map(kLimits, {}, dir);
+    ADD_FAILURE() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()),
+              file + ": shared map format version 7 (this build reads 1 and 2)");
   }
 }
 
