@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 
 #include "core/io/atomic_file.h"
@@ -169,16 +170,20 @@ PostResult LocalSharedMap::post(const MapPost& post) {
   }
   OccupancyGrid next = grid_;
   for (const PostedScan& s : post.scans) next.insert(s.scan, s.pose);
-  OccupancyGrid next_published = separate_ ? published_ : next;
-  if (separate_)
-    for (const PostedScan& s : post.scans) next_published.insert(s.scan, s.pose);
+  // Without a rule of its own the published grid is the shared one (publishedGrid()).
+  std::optional<OccupancyGrid> next_published;
+  if (separate_) {
+    next_published = published_;
+    for (const PostedScan& s : post.scans) next_published->insert(s.scan, s.pose);
+  }
   std::map<std::string, uint64_t> next_last = last_post_;
   next_last[post.robot] = post.post_id;
   // Durable before acknowledged.
   if (!file_.empty())
-    writeFileAtomic(file_, encodeSnapshot(next, next_published, version_ + 1, next_last));
+    writeFileAtomic(file_, encodeSnapshot(next, next_published ? *next_published : next,
+                                          version_ + 1, next_last));
   grid_ = std::move(next);
-  published_ = std::move(next_published);
+  if (next_published) published_ = std::move(*next_published);
   last_post_ = std::move(next_last);
   ++version_;
   result.status = PostStatus::kAccepted;
@@ -198,7 +203,7 @@ OccupancyGrid LocalSharedMap::grid() const {
 
 OccupancyGrid LocalSharedMap::publishedGrid() const {
   std::lock_guard<std::mutex> lock(mutex_);
-  return published_;
+  return separate_ ? published_ : grid_;
 }
 
 uint64_t LocalSharedMap::version() const {

@@ -111,8 +111,8 @@ class LocalSharedMap final : public SharedMapService {
   void load(const std::string& path);
   mutable std::mutex mutex_;
   OccupancyGrid grid_;
-  OccupancyGrid published_;
-  bool separate_ = false;  // the published grid has its own update rule
+  OccupancyGrid published_;  // kept only when separate_ (else the shared grid is published)
+  bool separate_ = false;    // the published grid has its own update rule
   uint64_t version_ = 0;
   std::map<std::string, uint64_t> last_post_;  // per robot
   std::string file_;
