@@ -1,4 +1,5 @@
 // coopmap: the command-line program.
+#include <cmath>
 #include <cstdio>
 #include <exception>
 #include <string>
@@ -19,6 +20,7 @@
 #include "apps/run_mission_options.h"
 #include "apps/run_world.h"
 #include "apps/stereo_eval_command.h"
+#include "apps/stereo_scale_command.h"
 #include "apps/traverse_command.h"
 #include "core/io/json_writer.h"
 #include "core/io/yaml_reader.h"
@@ -376,6 +378,24 @@ int main(int argc, char** argv) {
                       "world's true surfaces by range (median, robust sd, RMS), beside the "
                       "stereo's modelled sigma and the share of errors within it");
 
+  coopmap::StereoScaleOptions scale;
+  auto* cmd_scale = app.add_subcommand(
+      "stereo-scale",
+      "The odometry's distance scale measured by the cameras over runs' traverse logs (each "
+      "at the run's raw odometry), per log and pooled: a calibration of the robot from logs, "
+      "for a mission's `odometry_distance_scale`. With the runs' ground truth, each log's true "
+      "scale beside it.");
+  cmd_scale->add_option("runs", scale.run_dirs, "`coopmap run` output folders")
+      ->required()
+      ->check(CLI::ExistingDirectory);
+  cmd_scale->add_option("--robot", scale.robot, "Only this robot's logs")->capture_default_str();
+  cmd_scale
+      ->add_option("--passes", scale.passes,
+                   "Passes of the measurement, each from the odometry rescaled to the one "
+                   "before's figure (1-10; one pass finds about 70 % of a scale)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 10));
+
   coopmap::RobotCommandOptions robot_options;
   auto* cmd_robot = app.add_subcommand(
       "robot",
@@ -438,6 +458,19 @@ int main(int argc, char** argv) {
     }
     if (cmd_remap->parsed()) {
       coopmap::printRemapSummary(remap, coopmap::runRemap(remap));
+    }
+    if (cmd_scale->parsed()) {
+      const coopmap::StereoScaleSummary r = coopmap::runStereoScale(scale);
+      for (const coopmap::StereoScaleLog& l : r.logs) {
+        std::printf("%s %s: %d pairs, distance scale %+.4f", l.run_dir.c_str(), l.robot.c_str(),
+                    l.pairs, l.scale);
+        if (std::isfinite(l.truth)) std::printf(" (true %+.4f)", l.truth);
+        std::printf("\n");
+      }
+      std::printf(
+          "pooled over %d pairs: %+.4f; mean of %d logs: %+.4f, standard error %.4f (from the "
+          "logs' spread)\n",
+          r.pairs, r.pooled, r.logs_with_pairs, r.mean, r.standard_error);
     }
     if (cmd_drift->parsed()) {
       if (!drift_models.empty()) {

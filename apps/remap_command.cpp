@@ -20,14 +20,6 @@ namespace coopmap {
 
 namespace {
 
-// The pose stamped `stamp` (within a millisecond), if the trajectory has one.
-const Pose2* poseAt(const std::vector<StampedPose2>& trajectory, double stamp) {
-  const auto it = std::lower_bound(trajectory.begin(), trajectory.end(), stamp - 1e-3,
-                                   [](const StampedPose2& p, double t) { return p.stamp < t; });
-  if (it == trajectory.end() || std::abs(it->stamp - stamp) > 1e-3) return nullptr;
-  return &it->pose;
-}
-
 const char* const kOracles = "position, heading, along or across";
 
 }  // namespace
@@ -175,12 +167,12 @@ RemapSummary runRemap(const RemapOptions& o) {
     if (o.max_error_m > 0.0 || !o.oracle.empty()) truth_poses = trajectory("groundtruth");
     for (const TraverseEntry& e : log.entries) {
       ++s.entries;
-      const Pose2* pose = o.poses == "logged" ? &e.scan.odometry : poseAt(poses, e.scan.stamp);
+      const Pose2* pose = o.poses == "logged" ? &e.scan.odometry : tumPoseAt(poses, e.scan.stamp);
       if (!pose) {
         ++s.without_pose;
         continue;
       }
-      const Pose2* truth = truth_poses.empty() ? nullptr : poseAt(truth_poses, e.scan.stamp);
+      const Pose2* truth = truth_poses.empty() ? nullptr : tumPoseAt(truth_poses, e.scan.stamp);
       if (o.max_error_m > 0.0 &&
           (!truth || std::hypot(truth->x - pose->x, truth->y - pose->y) > o.max_error_m)) {
         ++s.too_far;

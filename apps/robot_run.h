@@ -31,6 +31,9 @@ struct RobotRun {
   // A robot back away from its start drives there by a first fix and looks again (the
   // start placed in its estimate's frame by the fix; its map and log stay in that frame).
   bool reapproaching = false;
+  // Looks at the home base that found no fix, this sortie: the robot drives to where its
+  // estimate places the start and looks again (kLooksAgain times) before it stops, lost.
+  int looks_again = 0;
   Pose2 home;  // its start (the map frame is its odometry frame at the start)
   // The estimate's frame (X_MO) when the sortie began. The tracker moves the estimate during
   // the sortie; the sortie is corrected on its odometry chain from this frame.
@@ -68,6 +71,10 @@ struct RobotRun {
 // 0.2 m, seeds 1-24) measured wall_recall 0.943 with either, false_occupied_rate 0.0150 with
 // 10 and 0.0161 with 30 (README).
 inline constexpr int kMinStereoScalePairs = 10;
+// Looks again at the home base after one that found no fix (a person or a teammate in the
+// view, a look from off the start), before the robot stops for good. The building lost a
+// robot so in 2 runs of 48 (seeds 24 and 41, calibrated scale).
+inline constexpr int kLooksAgain = 2;
 inline constexpr double kMaxStereoScale = 0.05;
 
 // How far a scripted traverse's home-base fix may move the robot, per metre driven (m/m,

@@ -142,6 +142,11 @@ void addMissionSettingOptions(CLI::App& cmd, RunOptions& run) {
         "before its correction [default: the world's, else off]",
         "--no-stereo-scale", "With --explore: no distance scale from stereo",
         run.stereo_distance_scale);
+  setting(cmd, "--odometry-scale", run.odometry_distance_scale,
+          "With --explore: the odometry's distance scale calibrated beforehand (the fraction by "
+          "which it over-counts distance; `coopmap stereo-scale` measures it over runs' logs): "
+          "the calibration starts from it [default: the world's, else 0]")
+      ->check(CLI::Range(-0.05, 0.05));
   onOff(cmd, "--shaped-closures",
         "With --explore and closures: a closure pins its position only in the directions its "
         "alignment pins down (along a straight corridor's walls it is left loose) [default: "

@@ -183,6 +183,17 @@ void endSortie(RobotRun& r, LocalSharedMap& live, double now, double reapproach_
     // Back away from the start (odometry drifted): the home base looks different from
     // there. Drive to the start by a first fix and look again.
     const SortieReport first = r.coop->locate(sortie);
+    if (!first.fixed && r.looks_again < kLooksAgain) {
+      // No fix from this look (someone in the view, the look fitting the shared map
+      // elsewhere): to the start as the estimate places it, and look again.
+      ++r.looks_again;
+      char line[160];
+      std::snprintf(line, sizeof line, "no fix from the look at %.0f s: looking again (%d of %d; ",
+                    now, r.looks_again, kLooksAgain);
+      r.result.sortie_log.push_back(line + first.method + ")");
+      r.mission->returnAgain(r.mapper->frame() * r.sortie_frame.inverse() * r.home);
+      return;
+    }
     const double off = (first.fix.translation() - r.home.translation()).norm();
     if (first.fixed && off > reapproach_m) {
       r.reapproaching = true;
@@ -206,6 +217,7 @@ void endSortie(RobotRun& r, LocalSharedMap& live, double now, double reapproach_
   std::optional<Eigen::Vector2d> expected;
   if (r.reapproaching) expected = r.home.translation();
   r.reapproaching = false;
+  r.looks_again = 0;
   const SortieReport rep = r.coop->endSortie(sortie, expected, &estimate);
   if (rep.fixed) r.mapper->setFrame(rep.correction * r.sortie_frame);
   if (rep.posted && r.calibrate) r.calibration.addSortie(rep.bias, rep.length_m);

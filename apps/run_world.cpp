@@ -180,6 +180,7 @@ RunResult runWorld(const RunOptions& opt) {
           mission.recent_hits_s,
           pick(opt.calibrate_distance_scale, we.calibrate_distance_scale, true),
           pick(opt.stereo_distance_scale, we.stereo_distance_scale, false),
+          pick(opt.odometry_distance_scale, we.odometry_distance_scale, 0.0),
           mission.passage_width,
           mission.planning.margin,
           mission.planner.preferred_margin,
@@ -211,6 +212,8 @@ RunResult runWorld(const RunOptions& opt) {
         r.stereo_scale = settings->stereo_distance_scale;
         r.calibration = OdometryCalibration(settings->calibrate_distance_scale &&
                                             !settings->stereo_distance_scale);
+        r.calibration.setDistanceScale(settings->odometry_distance_scale);
+        r.sortie_scale = settings->odometry_distance_scale;
       }
     }
     r.result.name = spec.name;
@@ -406,6 +409,7 @@ RunResult runWorld(const RunOptions& opt) {
       r.result.early_returns = r.mission->earlyReturns();
       r.result.mission_event = r.mission->lastEvent();
     }
+    if (r.calibrate) r.result.calibration = r.calibration.bias();
     r.result.traverse = r.mapper->traverse();
     r.result.odometry_error_m = std::hypot(truth.x - odo.x, truth.y - odo.y);
     r.result.odometry_error_deg = std::abs(wrapAngle(truth.theta - odo.theta)) * 180.0 / M_PI;

@@ -85,6 +85,9 @@ struct RunOptions {
   // The calibration's distance scale measured by stereo along straight stretches
   // (core/correction/stereo_scale.h) instead; unset: the world's mission setting, else false.
   std::optional<bool> stereo_distance_scale;
+  // The calibration's distance scale at the start (the robot calibrated from logs, `coopmap
+  // stereo-scale`): the first sortie drives on it; unset: the world's mission setting, else 0.
+  std::optional<double> odometry_distance_scale;
   // With more than one robot: frontiers near teammates' goals are worth less, and a robot
   // whose own part is explored goes home to share it (MissionConfig::claimed_return_factor);
   // false: each robot explores as if alone.
@@ -173,8 +176,8 @@ struct RobotRunResult {
   int sorties_fixed = 0;                // of them, localized there
   int sorties_posted = 0;               // of them, posted to the shared map
   std::vector<std::string> sortie_log;  // one line per sortie, for people
-  // The online odometry calibration after the last sortie (cooperative runs; zeros before
-  // the first): what the robot drives on, its distance scale from stereo when
+  // The online odometry calibration at the end (cooperative runs): what the robot drives on,
+  // its distance scale RunOptions::odometry_distance_scale's, or from stereo when
   // RunOptions::stereo_distance_scale.
   OdometryBias calibration;
   // Each home-base fix of the sorties against the true pose (m, deg).
@@ -229,6 +232,7 @@ struct RunResult {
     double recent_hits_s = 0.0;
     bool calibrate_distance_scale = true;
     bool stereo_distance_scale = false;
+    double odometry_distance_scale = 0.0;
     double passage_width = 0.0;
     double planning_margin = 0.0;
     double preferred_margin = 0.0;

@@ -108,6 +108,7 @@ void writeOutputs(const RunOptions& opt, const sim::World& world, const RunResul
     j.value("visited_radius", m->visited_radius).value("recent_hits_s", m->recent_hits_s);
     j.value("calibrate_distance_scale", m->calibrate_distance_scale);
     j.value("stereo_distance_scale", m->stereo_distance_scale);
+    j.value("odometry_distance_scale", m->odometry_distance_scale);
     j.value("passage_width", m->passage_width).value("planning_margin", m->planning_margin);
     j.value("preferred_margin", m->preferred_margin).value("closures", m->closures);
     j.value("post_gate_m", m->post_gate_m).value("manhattan_sigma_deg", m->manhattan_sigma_deg);

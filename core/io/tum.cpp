@@ -1,5 +1,6 @@
 #include "core/io/tum.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -60,6 +61,13 @@ std::vector<StampedPose2> readTum(const std::string& path) {
 void writeTum(const std::string& path, const std::vector<StampedPose2>& trajectory,
               const std::string& comment) {
   writeFileAtomic(path, formatTum(trajectory, comment));
+}
+
+const Pose2* tumPoseAt(const std::vector<StampedPose2>& trajectory, double stamp) {
+  const auto it = std::lower_bound(trajectory.begin(), trajectory.end(), stamp - 1e-3,
+                                   [](const StampedPose2& p, double t) { return p.stamp < t; });
+  if (it == trajectory.end() || std::abs(it->stamp - stamp) > 1e-3) return nullptr;
+  return &it->pose;
 }
 
 }  // namespace coopmap

@@ -27,4 +27,8 @@ std::vector<StampedPose2> parseTum(const std::string& text, const std::string& s
 // Reads a TUM file (parseTum; std::runtime_error naming the file if it cannot be read).
 std::vector<StampedPose2> readTum(const std::string& path);
 
+// The pose stamped `stamp` (within a millisecond: TUM files keep microseconds) in a
+// trajectory in time order, or nullptr if it has none.
+const Pose2* tumPoseAt(const std::vector<StampedPose2>& trajectory, double stamp);
+
 }  // namespace coopmap

@@ -7,6 +7,7 @@
 #include <ceres/solver.h>
 
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include <opencv2/core/mat.hpp>
@@ -234,9 +235,10 @@ AlignmentResult ScanAligner::align(const std::vector<const RadialMap*>& scans,
     result.information += weights[i] * j * j.transpose();
   }
   if (result.inliers < config_.min_inlier_share * result.points) {
+    char share[32];
+    std::snprintf(share, sizeof share, "%.2f", config_.min_inlier_share);
     result.message = std::to_string(result.inliers) + " of " + std::to_string(result.points) +
-                     " points on the reference's obstacles, expected a share of at least " +
-                     std::to_string(config_.min_inlier_share);
+                     " points on the reference's obstacles, expected a share of at least " + share;
     return result;
   }
   result.ok = summary.IsSolutionUsable();

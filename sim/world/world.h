@@ -196,7 +196,10 @@ struct World {
     std::optional<double> recent_hits_s;           // s: MissionConfig::recent_hits_s
     std::optional<bool> calibrate_distance_scale;  // OdometryCalibration's distance scale
     std::optional<bool> stereo_distance_scale;     // that scale from stereo (stereo_scale.h)
-    std::optional<double> passage_width;           // m: MissionConfig::passage_width
+    // The robots' distance scale calibrated beforehand (`coopmap stereo-scale` over logs):
+    // what the calibration starts from (fraction by which the odometry over-counts).
+    std::optional<double> odometry_distance_scale;
+    std::optional<double> passage_width;     // m: MissionConfig::passage_width
     std::optional<double> planning_margin;   // m: PlanningMapConfig::margin of exploring robots
     std::optional<double> preferred_margin;  // m: PlannerConfig::preferred_margin of the same
     // The sorties' loop closures: "none", "self", "shared" or "both" (CooperationConfig::

@@ -231,6 +231,7 @@ World parseWorld(const std::string& text, const std::string& file) {
                           "visited_radius",
                           "calibrate_distance_scale",
                           "stereo_distance_scale",
+                          "odometry_distance_scale",
                           "passage_width",
                           "planning_margin",
                           "preferred_margin",
@@ -265,6 +266,9 @@ World parseWorld(const std::string& text, const std::string& file) {
       metres("manhattan_sigma_deg", 0.0, 10.0, "degrees in [0, 10] (0: off)",
              e.manhattan_sigma_deg);
       metres("wall_heading_gain", 0.0, 1.0, "a share in [0, 1] (0: off)", e.wall_heading_gain);
+      metres("odometry_distance_scale", -0.05, 0.05,
+             "a fraction in [-0.05, 0.05] (the odometry's over-count of distance)",
+             e.odometry_distance_scale);
       metres("visited_radius", 0.0, 1.0, "metres in [0, 1] (0: the robot's radius)",
              e.visited_radius);
       if (mission->has("retry_frontiers"))

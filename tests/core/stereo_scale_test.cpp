@@ -9,65 +9,15 @@
 
 #include <gtest/gtest.h>
 
-#include "tests/core/segment_world.h"
+#include "tests/core/pilaster_corridor.h"
 
 namespace coopmap {
 namespace {
 
+using test::corridorWithPilasters;
+using test::driveAlong;
 using test::Segment;
-
-// A 2 m corridor along x with pilasters (0.3 m wide, 0.2 m deep) on alternate sides every
-// 1.5 m: their faces across the corridor pin the position along it.
-std::vector<Segment> corridorWithPilasters() {
-  std::vector<Segment> walls = {{{-3.0, -1.0}, {31.0, -1.0}}, {{-3.0, 1.0}, {31.0, 1.0}}};
-  for (int k = 0; k < 22; ++k) {
-    const double x = -1.0 + 1.5 * k, side = k % 2 == 0 ? -1.0 : 1.0;
-    walls.push_back({{x, side}, {x, 0.8 * side}});
-    walls.push_back({{x, 0.8 * side}, {x + 0.3, 0.8 * side}});
-    walls.push_back({{x + 0.3, 0.8 * side}, {x + 0.3, side}});
-  }
-  return walls;
-}
-
-// A stereo-like view from `pose`: 160 columns over 90 degrees, hits within 3.5 m, ranges
-// with `sigma` of noise.
-RadialMap viewOf(const std::vector<Segment>& walls, const Pose2& pose, std::mt19937& rng,
-                 double sigma = 0.01) {
-  std::normal_distribution<double> noise(0.0, sigma);
-  RadialMap scan;
-  scan.odometry = pose;
-  scan.max_range = 3.5;
-  for (int i = 0; i < 160; ++i) {
-    RadialReading r;
-    r.bearing = M_PI / 4 - i * (M_PI / 2) / 159.0;
-    const double a = pose.theta + r.bearing;
-    const double t = test::castRay(walls, pose.translation(), {std::cos(a), std::sin(a)}, 3.5);
-    r.kind = t < 0.0 ? RadialKind::kBeyond : RadialKind::kHit;
-    r.range = t < 0.0 ? 3.5 : t + noise(rng);
-    r.sigma = 0.02;
-    scan.readings.push_back(r);
-  }
-  return scan;
-}
-
-// A robot driving along the corridor's middle, 0.1 m per radial map with a small weave,
-// whose odometry counts `over` too much of every metre.
-TraverseLog driveAlong(const std::vector<Segment>& walls, double over, uint32_t seed,
-                       double sigma = 0.01) {
-  std::mt19937 rng(seed);
-  TraverseLog log;
-  log.robot = "r";
-  for (int i = 0; i <= 240; ++i) {
-    const Pose2 truth(0.1 * i, 0.05 * std::sin(0.05 * i), 0.0);
-    TraverseEntry e;
-    e.segment = MotionSegment::kStraight;
-    e.scan = viewOf(walls, truth, rng, sigma);
-    e.scan.stamp = i / 3.0;
-    e.scan.odometry = Pose2((1.0 + over) * truth.x, truth.y, truth.theta);
-    log.entries.push_back(e);
-  }
-  return log;
-}
+using test::viewOf;
 
 TEST(StereoScaleTest, FindsTheDistanceTheOdometryOverCounts) {
   const std::vector<Segment> walls = corridorWithPilasters();

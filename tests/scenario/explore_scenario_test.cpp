@@ -71,7 +71,9 @@ TEST(ExploreScenarioTest, TheBuildingsMissionSettingsApplyUnlessTheCommandLineSa
   EXPECT_EQ(r.mission_settings->planning_margin, 0.12);
   EXPECT_EQ(r.mission_settings->preferred_margin, 0.3);
   EXPECT_EQ(r.mission_settings->closures, "none");
-  EXPECT_TRUE(r.mission_settings->stereo_distance_scale);
+  EXPECT_FALSE(r.mission_settings->stereo_distance_scale);
+  EXPECT_EQ(r.mission_settings->odometry_distance_scale, 0.0101);  // calibrated from logs
+  EXPECT_EQ(r.robots[0].calibration.distance_scale, 0.0101);       // what the robot drives on
   EXPECT_EQ(r.mission_settings->post_gate_m, 0.0);
   EXPECT_EQ(r.mission_settings->recent_hits_s, 4.0);
   EXPECT_EQ(r.mission_settings->manhattan_sigma_deg, 0.6);
@@ -87,12 +89,15 @@ TEST(ExploreScenarioTest, TheBuildingsMissionSettingsApplyUnlessTheCommandLineSa
   o.retry_frontiers = false;
   o.floor_edge_depth = 0.0;
   o.closures = "self";
-  o.stereo_distance_scale = false;
+  o.stereo_distance_scale = true;
+  o.odometry_distance_scale = 0.0;
   o.post_gate_m = 0.2;
   r = runWorld(o);
   EXPECT_EQ(r.mission_settings->floor_edge_depth, 0.0);
   EXPECT_EQ(r.mission_settings->closures, "self");
-  EXPECT_FALSE(r.mission_settings->stereo_distance_scale);
+  EXPECT_TRUE(r.mission_settings->stereo_distance_scale);
+  EXPECT_EQ(r.mission_settings->odometry_distance_scale, 0.0);
+  EXPECT_EQ(r.robots[0].calibration.distance_scale, 0.0);
   EXPECT_EQ(r.mission_settings->post_gate_m, 0.2);
   EXPECT_TRUE(r.mission_settings->shaped_closures);
   EXPECT_EQ(r.mission_settings->safety_distance, 0.6);
@@ -169,13 +174,16 @@ RunOptions buildingExplorer(double duration) {
   return o;
 }
 
-// The building's distance scale from stereo (stereo_distance_scale, the world's): the
-// simulated B-14's encoders over-count the distance driven by about 1 % (robots/b14/b14.yaml,
-// plus slip), which no home-base fix can see. Over its first 500 s (seed 1, one robot) the
-// robot takes a scale from its cameras near the over-count its encoders really had (+0.84 %
-// against +1.01 % after its second sortie).
+// The distance scale from stereo (stereo_distance_scale; the building's robots were
+// calibrated from logs since session 29, odometry_distance_scale): the simulated B-14's
+// encoders over-count the distance driven by about 1 % (robots/b14/b14.yaml, plus slip),
+// which no home-base fix can see. Over its first 500 s (seed 1, one robot, uncalibrated) the
+// robot takes a scale from its cameras near the over-count its encoders really had.
 TEST(ExploreScenarioTest, TheBuildingsCamerasMeasureTheEncodersDistanceScale) {
-  const RunResult r = runWorld(buildingExplorer(500.0));
+  RunOptions o = buildingExplorer(500.0);
+  o.stereo_distance_scale = true;
+  o.odometry_distance_scale = 0.0;
+  const RunResult r = runWorld(o);
   ASSERT_TRUE(r.mission_settings->stereo_distance_scale);
   const RobotRunResult& robot = r.robots[0];
   ASSERT_EQ(robot.odometry.size(), robot.groundtruth.size());
@@ -222,13 +230,15 @@ TEST(ExploreScenarioTest, TheBuildingsWallsKeepTheEstimatesHeading) {
 // Every sortie's corrected heading is held by the building's walls, even where the first
 // correction left it further off than their turn is searched (manhattan_passes): seed 2's
 // jose came back from its third sortie (by 628 s) with its corrected heading 2-5 deg off all
-// along, when the headings were found once (2.55 deg RMS over the first 700 s; 0.28 now).
+// along, when the headings were found once (2.55 deg RMS over the first 700 s; 0.28 then).
+// Since the robots drive on a calibrated distance scale (session 29) their third sorties end
+// by 741 s (jose) and 826 s (eric).
 //
 // Its shared map published is drawn at 0.5 of the band the robots' maps have
-// (RunOptions::published_band): wall_recall 0.962 and false_occupied_rate 0.0035, where the
-// grid the robots import from the same posts has 0.954 and 0.0101.
+// (RunOptions::published_band): fewer false obstacles than the grid the robots import from
+// the same posts.
 TEST(ExploreScenarioTest, TheBuildingsWallsHoldEverySortiesCorrectedHeading) {
-  RunOptions o = buildingExplorer(700.0);
+  RunOptions o = buildingExplorer(850.0);
   o.robots = 2;
   o.seed = 2;
   o.out_dir = testing::TempDir() + "/coopmap_building_headings";
@@ -265,6 +275,33 @@ TEST(ExploreScenarioTest, TheBuildingsWallsHoldEverySortiesCorrectedHeading) {
   const std::string metrics = readFile(o.out_dir + "/metrics.json");
   for (const char* key : {"\"published_band\": 0.5", "\"imported\""})
     EXPECT_NE(metrics.find(key), std::string::npos) << key;
+}
+
+// A look at the home base that finds no fix does not lose the robot: it drives to the start
+// as its estimate places it and looks again (kLooksAgain). Seed 24's eric came back from its
+// second sortie at 426 s to a look with 167 of 370 points on the reference's obstacles and
+// stopped there for good (the building then mapped only 0.741 of its floor); now its second
+// look finds the home base and it goes on.
+TEST(ExploreScenarioTest, ALookAtTheHomeBaseWithoutAFixIsTakenAgain) {
+  RunOptions o = buildingExplorer(520.0);
+  o.robots = 2;
+  o.seed = 24;
+  const RunResult r = runWorld(o);
+  const RobotRunResult& eric = r.robots[1];
+  ASSERT_EQ(eric.name, "eric");
+  bool looked_again = false;
+  for (const std::string& line : eric.sortie_log) {
+    std::printf("%s\n", line.substr(0, 160).c_str());
+    if (line.find("looking again (1 of 2") != std::string::npos) looked_again = true;
+  }
+  // The seed's failed look is the case: without it this test checks nothing (pick another).
+  ASSERT_TRUE(looked_again) << "seed 24's eric no longer comes back to a failed look";
+  EXPECT_NE(eric.mission_phase, "done") << eric.mission_event;
+  EXPECT_GE(eric.sorties_fixed, 2) << "the second sortie fixed after the second look";
+  for (const auto& [m, deg] : eric.fix_errors) {
+    EXPECT_LT(m, 0.05);
+    EXPECT_LT(deg, 1.0);
+  }
 }
 
 // A world's sortie budget is the sortie budget (it used to be read and then ignored).

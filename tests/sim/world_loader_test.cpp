@@ -90,6 +90,7 @@ TEST(WorldLoaderTest, MissionSettingsOfABuildingAreReadAndChecked) {
       "retry_frontiers: true, "
       "floor_edge_depth: 1.5, shaped_closures: true, bump_away: true, visited_radius: 0.09, "
       "calibrate_distance_scale: false, stereo_distance_scale: true, passage_width: 1.2, "
+      "odometry_distance_scale: 0.012, "
       "sortie_budget_m: 30, "
       "planning_margin: 0.2, preferred_margin: 0.3, closures: both, post_gate_m: 0.25, "
       "recent_hits_s: 8, manhattan_sigma_deg: 0.6, wall_heading_gain: 0.5, closure_scans: 12, "
@@ -110,6 +111,7 @@ TEST(WorldLoaderTest, MissionSettingsOfABuildingAreReadAndChecked) {
   EXPECT_EQ(w.exploration.visited_radius, 0.09);
   EXPECT_EQ(w.exploration.calibrate_distance_scale, false);
   EXPECT_EQ(w.exploration.stereo_distance_scale, true);
+  EXPECT_EQ(w.exploration.odometry_distance_scale, 0.012);
   EXPECT_EQ(w.exploration.passage_width, 1.2);
   EXPECT_EQ(w.exploration.sortie_budget_m, 30.0);
   EXPECT_EQ(w.exploration.planning_margin, 0.2);
@@ -142,6 +144,11 @@ TEST(WorldLoaderTest, MissionSettingsOfABuildingAreReadAndChecked) {
   e = errorOf("mission: {mode: explore, manhattan_sigma_deg: 45}\n" + minimal());
   EXPECT_NE(e.find("w.yaml:1:47: mission.manhattan_sigma_deg: expected degrees in [0, 10] (0: "
                    "off), got '45'"),
+            std::string::npos)
+      << e;
+  e = errorOf("mission: {mode: explore, odometry_distance_scale: 0.2}\n" + minimal());
+  EXPECT_NE(e.find("mission.odometry_distance_scale: expected a fraction in [-0.05, 0.05] (the "
+                   "odometry's over-count of distance), got '0.2'"),
             std::string::npos)
       << e;
   e = errorOf("mission: {mode: explore, wall_heading_gain: 2}\n" + minimal());
