@@ -1,5 +1,4 @@
 // coopmap: the command-line program.
-#include <cmath>
 #include <cstdio>
 #include <exception>
 #include <string>
@@ -439,39 +438,11 @@ int main(int argc, char** argv) {
   try {
     if (cmd_robot->parsed()) return coopmap::runRobotCommand(robot_options);
     if (cmd_calibrate->parsed()) std::printf("%s", coopmap::runCalibrate(calibrate).report.c_str());
-    if (cmd_traverse->parsed()) {
-      const coopmap::TraverseSummary t = coopmap::runTraverse(trav);
-      std::printf(
-          "%s: %zu entries (%zu used: %.1f s, %.1f m by odometry, %zu turning, %zu straight); "
-          "%s/map.{pgm,yaml,png} written\n",
-          t.robot.c_str(), t.entries, t.used, t.duration_s, t.path_length_m, t.turns, t.straights,
-          trav.out_dir.c_str());
-      if (trav.align_stretch > 0) {
-        const coopmap::StretchAlignmentStats& a = t.alignment;
-        std::printf(
-            "stretches of %d aligned to the map: %d of %d; moved at their middle: RMS %.3f m, "
-            "%.2f deg; median %.3f m, %.2f deg; 90th percentile %.3f m, %.2f deg; mean turn "
-            "%+.2f deg\n",
-            trav.align_stretch, a.aligned, a.stretches, a.rms_m, a.rms_deg, a.median_m,
-            a.median_deg, a.p90_m, a.p90_deg, a.mean_deg);
-      }
-    }
+    if (cmd_traverse->parsed()) coopmap::printTraverseSummary(trav, coopmap::runTraverse(trav));
     if (cmd_remap->parsed()) {
       coopmap::printRemapSummary(remap, coopmap::runRemap(remap));
     }
-    if (cmd_scale->parsed()) {
-      const coopmap::StereoScaleSummary r = coopmap::runStereoScale(scale);
-      for (const coopmap::StereoScaleLog& l : r.logs) {
-        std::printf("%s %s: %d pairs, distance scale %+.4f", l.run_dir.c_str(), l.robot.c_str(),
-                    l.pairs, l.scale);
-        if (std::isfinite(l.truth)) std::printf(" (true %+.4f)", l.truth);
-        std::printf("\n");
-      }
-      std::printf(
-          "pooled over %d pairs: %+.4f; mean of %d logs: %+.4f, standard error %.4f (from the "
-          "logs' spread)\n",
-          r.pairs, r.pooled, r.logs_with_pairs, r.mean, r.standard_error);
-    }
+    if (cmd_scale->parsed()) coopmap::printStereoScaleSummary(coopmap::runStereoScale(scale));
     if (cmd_drift->parsed()) {
       if (!drift_models.empty()) {
         drift.models.clear();

@@ -7,6 +7,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "apps/run_outputs.h"
 #include "core/correction/traverse_log.h"
 #include "core/io/atomic_file.h"
 #include "core/io/tum.h"
@@ -136,13 +137,7 @@ RemapSummary runRemap(const RemapOptions& o) {
   const GridU8 floor = sim::floorMask(world, limits);
 
   RemapSummary s;
-  std::vector<std::filesystem::path> logs;
-  for (const auto& e : std::filesystem::directory_iterator(o.run_dir)) {
-    const std::string name = e.path().filename().string();
-    if (name.rfind("traverse_", 0) == 0 && e.path().extension() == ".traverse")
-      logs.push_back(e.path());
-  }
-  std::sort(logs.begin(), logs.end());
+  const std::vector<RunLog> logs = runLogsIn(o.run_dir);
   if (logs.empty())
     throw std::runtime_error(o.run_dir + ": no traverse_<robot>.traverse logs in the folder");
   // Inserted in time order over all robots, as the posts came (with the log-odds clamped,
@@ -155,13 +150,10 @@ RemapSummary runRemap(const RemapOptions& o) {
     Pose2 pose;
   };
   std::vector<Placed> placed;
-  for (const std::filesystem::path& path : logs) {
-    const TraverseLog& log = loaded.emplace_back(loadTraverseLog(path.string()));
-    const std::string robot = path.stem().string().substr(std::string("traverse_").size());
-    s.robots.push_back(robot);
-    auto trajectory = [&](const std::string& kind) {
-      return readTum(o.run_dir + "/trajectory_" + robot + "_" + kind + ".tum");
-    };
+  for (const RunLog& run_log : logs) {
+    const TraverseLog& log = loaded.emplace_back(loadTraverseLog(run_log.path));
+    s.robots.push_back(run_log.robot);
+    auto trajectory = [&](const std::string& kind) { return readTum(run_log.trajectory(kind)); };
     std::vector<StampedPose2> poses, truth_poses;
     if (o.poses != "logged") poses = trajectory(o.poses);
     if (o.max_error_m > 0.0 || !o.oracle.empty()) truth_poses = trajectory("groundtruth");

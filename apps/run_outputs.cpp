@@ -1,5 +1,9 @@
 #include "apps/run_outputs.h"
 
+#include <algorithm>
+#include <filesystem>
+#include <stdexcept>
+
 #include "core/io/atomic_file.h"
 #include "core/mapping/map_io.h"
 
@@ -22,6 +26,27 @@ void writeRobotOutputs(const std::string& dir, const RobotOutputs& r) {
   writeTum(dir + "/trajectory_" + name + "_odometry.tum", *r.odometry,
            "coopmap odometry of " + name + " in world " + r.world);
   saveTraverseLog(dir + "/traverse_" + name + ".traverse", *r.traverse);
+}
+
+std::string RunLog::trajectory(const std::string& kind) const {
+  return (std::filesystem::path(path).parent_path() / ("trajectory_" + robot + "_" + kind + ".tum"))
+      .string();
+}
+
+std::vector<RunLog> runLogsIn(const std::string& dir) {
+  std::vector<RunLog> out;
+  std::error_code error;
+  for (const auto& e : std::filesystem::directory_iterator(dir, error)) {
+    const std::string name = e.path().filename().string();
+    if (name.rfind("traverse_", 0) == 0 && e.path().extension() == ".traverse")
+      out.push_back(
+          {e.path().stem().string().substr(std::string("traverse_").size()), e.path().string()});
+  }
+  if (error)
+    throw std::runtime_error(dir + ": cannot read the run folder (" + error.message() + ")");
+  std::sort(out.begin(), out.end(),
+            [](const RunLog& a, const RunLog& b) { return a.robot < b.robot; });
+  return out;
 }
 
 }  // namespace coopmap

@@ -28,4 +28,14 @@ struct RobotOutputs {
 // truth), trajectory_<name>_odometry.tum and traverse_<name>.traverse.
 void writeRobotOutputs(const std::string& dir, const RobotOutputs& r);
 
+// A run folder's traverse_<robot>.traverse logs, sorted by robot name.
+struct RunLog {
+  std::string robot;
+  std::string path;
+  // The folder's trajectory_<robot>_<kind>.tum (kind: groundtruth, odometry, corrected, ...).
+  std::string trajectory(const std::string& kind) const;
+};
+// Throws std::runtime_error naming the folder if it cannot be read.
+std::vector<RunLog> runLogsIn(const std::string& dir);
+
 }  // namespace coopmap

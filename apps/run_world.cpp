@@ -213,7 +213,7 @@ RunResult runWorld(const RunOptions& opt) {
         r.calibration = OdometryCalibration(settings->calibrate_distance_scale &&
                                             !settings->stereo_distance_scale);
         r.calibration.setDistanceScale(settings->odometry_distance_scale);
-        r.sortie_scale = settings->odometry_distance_scale;
+        r.sortie_scale = r.calibration.bias().distance_scale;
       }
     }
     r.result.name = spec.name;

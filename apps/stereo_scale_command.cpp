@@ -1,11 +1,12 @@
 #include "apps/stereo_scale_command.h"
 
-#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <limits>
 #include <stdexcept>
 
+#include "apps/run_outputs.h"
 #include "core/correction/stereo_scale.h"
 #include "core/correction/traverse_log.h"
 #include "core/io/tum.h"
@@ -36,23 +37,16 @@ StereoScaleSummary runStereoScale(const StereoScaleOptions& o) {
   StereoScaleSummary s;
   StereoScale pooled;
   for (const std::string& dir : o.run_dirs) {
-    std::vector<std::filesystem::path> logs;
-    for (const auto& e : std::filesystem::directory_iterator(dir)) {
-      const std::string name = e.path().filename().string();
-      if (name.rfind("traverse_", 0) == 0 && e.path().extension() == ".traverse")
-        logs.push_back(e.path());
-    }
-    std::sort(logs.begin(), logs.end());
     size_t used = 0;
-    for (const std::filesystem::path& path : logs) {
-      const std::string robot = path.stem().string().substr(std::string("traverse_").size());
+    for (const RunLog& run_log : runLogsIn(dir)) {
+      const std::string& robot = run_log.robot;
       if (!o.robot.empty() && robot != o.robot) continue;
       ++used;
-      TraverseLog log = loadTraverseLog(path.string());
-      const std::string odometry_file = dir + "/trajectory_" + robot + "_odometry.tum";
+      TraverseLog log = loadTraverseLog(run_log.path);
+      const std::string odometry_file = run_log.trajectory("odometry");
       const std::vector<StampedPose2> odometry = readTum(odometry_file);
       std::vector<StampedPose2> truth;
-      const std::string truth_file = dir + "/trajectory_" + robot + "_groundtruth.tum";
+      const std::string truth_file = run_log.trajectory("groundtruth");
       if (std::filesystem::exists(truth_file)) truth = readTum(truth_file);
       std::vector<Pose2> raw;
       std::vector<const Pose2*> true_poses;
@@ -61,7 +55,7 @@ StereoScaleSummary runStereoScale(const StereoScaleOptions& o) {
         if (!p)
           throw std::runtime_error(odometry_file + ": no pose stamped " +
                                    std::to_string(e.scan.stamp) + " s (an entry of " +
-                                   path.string() + ")");
+                                   run_log.path + ")");
         e.scan.odometry = *p;
         raw.push_back(*p);
         true_poses.push_back(truth.empty() ? nullptr : tumPoseAt(truth, e.scan.stamp));
@@ -95,6 +89,19 @@ StereoScaleSummary runStereoScale(const StereoScaleOptions& o) {
   if (s.logs_with_pairs > 1)
     s.standard_error = std::sqrt(sq / (s.logs_with_pairs - 1) / s.logs_with_pairs);
   return s;
+}
+
+void printStereoScaleSummary(const StereoScaleSummary& r) {
+  for (const StereoScaleLog& l : r.logs) {
+    std::printf("%s %s: %d pairs, distance scale %+.4f", l.run_dir.c_str(), l.robot.c_str(),
+                l.pairs, l.scale);
+    if (std::isfinite(l.truth)) std::printf(" (true %+.4f)", l.truth);
+    std::printf("\n");
+  }
+  std::printf(
+      "pooled over %d pairs: %+.4f; mean of %d logs: %+.4f, standard error %.4f (from the logs' "
+      "spread)\n",
+      r.pairs, r.pooled, r.logs_with_pairs, r.mean, r.standard_error);
 }
 
 }  // namespace coopmap

@@ -37,4 +37,7 @@ struct StereoScaleSummary {
 // std::runtime_error naming the folder or file for a run without logs or trajectories.
 StereoScaleSummary runStereoScale(const StereoScaleOptions& options);
 
+// Prints a line per log and the pooled figures.
+void printStereoScaleSummary(const StereoScaleSummary& summary);
+
 }  // namespace coopmap

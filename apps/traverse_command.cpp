@@ -124,4 +124,21 @@ TraverseSummary runTraverse(const TraverseOptions& o) {
   return s;
 }
 
+void printTraverseSummary(const TraverseOptions& o, const TraverseSummary& t) {
+  std::printf(
+      "%s: %zu entries (%zu used: %.1f s, %.1f m by odometry, %zu turning, %zu straight); "
+      "%s/map.{pgm,yaml,png} written\n",
+      t.robot.c_str(), t.entries, t.used, t.duration_s, t.path_length_m, t.turns, t.straights,
+      o.out_dir.c_str());
+  if (o.align_stretch > 0) {
+    const StretchAlignmentStats& a = t.alignment;
+    std::printf(
+        "stretches of %d aligned to the map: %d of %d; moved at their middle: RMS %.3f m, "
+        "%.2f deg; median %.3f m, %.2f deg; 90th percentile %.3f m, %.2f deg; mean turn "
+        "%+.2f deg\n",
+        o.align_stretch, a.aligned, a.stretches, a.rms_m, a.rms_deg, a.median_m, a.median_deg,
+        a.p90_m, a.p90_deg, a.mean_deg);
+  }
+}
+
 }  // namespace coopmap

@@ -40,4 +40,7 @@ struct TraverseSummary {
 // a bad range.
 TraverseSummary runTraverse(const TraverseOptions& options);
 
+// Prints what the log holds and, with align_stretch, how far the stretches' alignments moved.
+void printTraverseSummary(const TraverseOptions& options, const TraverseSummary& summary);
+
 }  // namespace coopmap
