@@ -64,6 +64,8 @@ void MissionConfig::validate() const {
           "a number in [0, 1]", claimed_return_factor);
   require("min_sortie_m", min_sortie_m >= 0.0, "a number >= 0", min_sortie_m);
   require("look_wait_s", look_wait_s >= 0.0, "a number >= 0", look_wait_s);
+  require("trail_after_waits", trail_after_waits >= 0, "a number >= 0 (0: never)",
+          trail_after_waits);
   auto atLeastOne = [](const char* field, int v) {
     if (v < 1)
       throw std::invalid_argument(std::string("mission config: field '") + field +
@@ -249,14 +251,29 @@ void MissionAgent::goHome(double now, const Pose2& odometry, const OccupancyGrid
       }
     }
   }
+  // Waited long with no way even so: home on the trail it drove out on (trail_after_waits).
+  bool on_trail = false;
+  const bool far = (home - odometry.translation()).norm() > config_.look_from_m;
+  if (!plan.solved() && far && config_.trail_after_waits > 0 &&
+      home_waits_ >= config_.trail_after_waits && !trail_.cells.empty()) {
+    const PlanningMap trail = planningMap(map, false, true, least, true);
+    if (trail.freeAt(from.translation())) {
+      plan = planner_.plan(trail, from, home);
+      on_trail = plan.solved();
+    }
+  }
+  home_on_trail_ = on_trail;
   if (plan.solved()) {
     path_ = plan.path;
     if (step_off) path_.waypoints.insert(path_.waypoints.begin(), odometry.translation());
     startRoute(routeOf(path_.waypoints), now);
-    if (squeezed) {
-      home_margin_ = least;
-      last_event_ = "no way home with the planning margin: going with the least";
-    }
+    if (squeezed || on_trail) home_margin_ = least;
+    if (squeezed) last_event_ = "no way home with the planning margin: going with the least";
+    if (on_trail)
+      last_event_ = "no way home in the map after " + std::to_string(home_waits_) +
+                    " waits: going home on the trail driven out";
+    else
+      home_waits_ = 0;
   } else if ((home - odometry.translation()).norm() <= config_.look_from_m) {
     path_ = PlannedPath{};
     startRoute({{target_.translation(), false, 0.0, 0.0}}, now);  // straight: nothing better
@@ -265,6 +282,7 @@ void MissionAgent::goHome(double now, const Pose2& odometry, const OccupancyGrid
     path_ = PlannedPath{};
     follower_.reset();
     home_retry_at_ = now + config_.home_retry_s;
+    ++home_waits_;
     last_event_ = "no way home in the map: waiting to plan again";
   }
 }
@@ -285,6 +303,8 @@ void MissionAgent::continueAfterFix(double now) {
   travelled_ = 0.0;
   sortie_bumps_ = 0;
   bumps_.clear();  // the estimate's frame changes with the fix
+  trail_ = GridU8{};
+  home_waits_ = 0;
   recent_.clear();
   claims_.clear();             // what teammates posted is in the imported map now
   explorer_.clearBlacklist();  // the goals failed in the old frame, on the old map
@@ -533,7 +553,8 @@ MotionCommand MissionAgent::update(double now, const Pose2& odometry, const Occu
         return last_command_ = MotionCommand::stop();
       }
       if (freshHitOnWay(odometry, fresh) &&
-          firstBlockedSegment(wayAhead(odometry), planningMap(map, false, true, home_margin_))) {
+          firstBlockedSegment(wayAhead(odometry),
+                              planningMap(map, false, true, home_margin_, home_on_trail_))) {
         last_event_ = "way home blocked: replanned";
         goHome(now, odometry, map);
         return last_command_ = MotionCommand::stop();

@@ -40,6 +40,14 @@ struct MissionConfig {
   // the corridor, say), it stops and plans again after home_retry_s; it drove straight at
   // home before, and in the building once into a mapped wall too close for the cameras to see.
   double home_retry_s = 2.0;  // s
+  // After this many waits in a row with no way home in the map (0: never), it plans home on
+  // its trail: the cells within its radius plus the least margin and a cell of where it has
+  // driven this sortie count as free whatever the map drew there since. Its body passed
+  // there; a stray cell in a door blocks the map, not the way (the building's seed 25: the
+  // lab door, 0.9 m wide, drawn 0.6 m with a stray cell in it; the robot waited from 1010 s
+  // to the end at the north corridor's west end). What the cameras have just seen, the
+  // bumpers and teammates still block it.
+  int trail_after_waits = 5;
   // When no frontier goal is left and some failed this sortie (or had no way to them), after
   // at least min_sortie_m: home to share and try them again next sortie (the imported map is
   // another), rather than end exploration. Goals reached are then remembered for good: what
@@ -207,8 +215,9 @@ class MissionAgent {
   // With `recent`, what the cameras just saw blocks too (recent_hits_s), but for what is so
   // near the robot that it could not start (that is the safety stop's and the bumpers').
   // `margin`: beyond the robot's radius, instead of planning.margin (< 0: planning.margin).
+  // `trail`: the cells along this sortie's trail are free (trail_after_waits).
   PlanningMap planningMap(const OccupancyGrid& map, bool allow_unknown, bool recent = true,
-                          double margin = -1.0) const;
+                          double margin = -1.0, bool trail = false) const;
   std::vector<Eigen::Vector2d> bumps_;  // where the bumpers touched something this sortie
   struct RecentHit {
     double t;
@@ -283,6 +292,8 @@ class MissionAgent {
   double passage_wait_since_ = -1.0;  // waiting for a passage since then
   double home_retry_at_ = -1.0;       // no way home: plan again then
   double home_margin_ = -1.0;         // the way home's margin, when not planning.margin (else < 0)
+  int home_waits_ = 0;                // waits in a row with no way home
+  bool home_on_trail_ = false;        // the way home is planned on the trail
   double passage_next_ = -1.0;        // after a wait that timed out: no waiting until then
   int passage_waits_ = 0;
   double travelled_ = 0.0;
@@ -293,6 +304,7 @@ class MissionAgent {
   std::string last_event_;
   MotionCommand last_command_;
   GridU8 visited_;               // cells the robot's body has covered: free, seen or not
+  GridU8 trail_;                 // this sortie's: see trail_after_waits
   double backoff_speed_ = -0.1;  // m/s while backing off from a bump
 };
 

@@ -38,7 +38,7 @@ bool MissionAgent::nearWay(const std::vector<Eigen::Vector2d>& way, const Eigen:
 }
 
 PlanningMap MissionAgent::planningMap(const OccupancyGrid& map, bool allow_unknown, bool recent,
-                                      double margin) const {
+                                      double margin, bool trail) const {
   // Where the robot has been is free though the cameras never saw it (they never see beneath
   // the robot), or saw a weak obstacle there (a stereo mismatch). Not where they saw an
   // obstacle again and again: the estimate drifts, so "where it has been" can lie on a table
@@ -60,7 +60,8 @@ PlanningMap MissionAgent::planningMap(const OccupancyGrid& map, bool allow_unkno
                                   footprint * footprint);
       const bool firm =
           seen == CellState::kOccupied && map.logOdds(ix, iy) >= config_.firm_log_odds;
-      states.at(ix, iy) = visited && !firm ? CellState::kFree : seen;
+      const bool on_trail = trail && !trail_.cells.empty() && trail_.at(ix, iy);
+      states.at(ix, iy) = on_trail || (visited && !firm) ? CellState::kFree : seen;
     }
   // What the cameras saw a moment ago, where the robot's estimate put it then.
   if (recent) {
@@ -123,6 +124,13 @@ void MissionAgent::markVisited(const OccupancyGrid& map, const Pose2& odometry) 
   const double r =
       config_.visited_radius > 0.0 ? config_.visited_radius : config_.planning.robot_radius;
   fillDisc(visited_, odometry.translation(), r, uint8_t{1});
+  if (config_.trail_after_waits > 0) {
+    if (trail_.cells.empty()) trail_ = GridU8(lim, 0);
+    // Wide enough that a path along it keeps the least margin (goHome) from what lies beyond.
+    const double least = std::sqrt(2.0) * lim.resolution;
+    fillDisc(trail_, odometry.translation(), config_.planning.robot_radius + least + lim.resolution,
+             uint8_t{1});
+  }
 }
 
 std::optional<Eigen::Vector2d> MissionAgent::nearestFreeCell(const PlanningMap& planning,

@@ -248,5 +248,77 @@ TEST(MissionTest, GoesHomeThroughADoorWithTooLittleRoomForItsPlanningMargin) {
   EXPECT_GT(homeThroughANarrowDoor(0.2).first, 2.6);
 }
 
+// A robot drives out through the door east of home (the map unknown beyond x = 4 m, a
+// frontier there); beyond it, its map becomes all seen, the door with two firm stray cells in
+// its middle (0.45 m between their centres and the jambs': no room for the body and the
+// least margin). Returns its
+// least x once home was out of reach, the control steps (50 ms) it stood waiting, and its
+// least distance to the jambs' cells on its way home.
+struct TrailHome {
+  double least = 1e9;
+  int waiting = 0;
+  double clearance = 1e9;
+};
+TrailHome homeOnTheTrail(int trail_after_waits) {
+  const Pose2 home(1.0, 3.0, 0.0);
+  OccupancyGrid out = wallWithADoor();
+  OccupancyGrid stray = out;
+  {
+    const MapLimits& l = out.limits();
+    std::vector<int16_t> lo = out.logOddsGrid().cells;
+    std::vector<uint8_t> seen = out.seenGrid().cells;
+    for (int iy = 0; iy < l.height; ++iy)
+      for (int ix = l.cellX(4.0); ix < l.width; ++ix) seen[l.index(ix, iy)] = 0;
+    out.assign(lo, seen);
+    lo = stray.logOddsGrid().cells;
+    for (const double y : {2.975, 3.025}) lo[l.index(l.cellX(2.55), l.cellY(y))] = 500;
+    stray.assign(lo, stray.seenGrid().cells);
+  }
+  MissionConfig c = quickFirstSortie();
+  c.first_budget_m = 0.0;
+  c.budget_m = 30.0;
+  c.look_from_m = 0.5;
+  c.planning.margin = 0.12;  // the building's
+  c.trail_after_waits = trail_after_waits;
+  MissionAgent mission(home, c);
+  Pose2 pose = home;
+  const double dt = 0.05;
+  bool beyond = false;
+  TrailHome r;
+  for (int step = 0; step < 12000 && mission.phase() != MissionPhase::kAtHome; ++step) {
+    beyond = beyond || pose.x > 3.2;
+    const MotionCommand cmd = mission.update(step * dt, pose, beyond ? stray : out, nullptr);
+    pose = pose * Pose2(cmd.linear * dt, 0.0, cmd.angular * dt);
+    if (mission.lastEvent().find("waiting to plan again") != std::string::npos &&
+        cmd.linear == 0.0 && cmd.angular == 0.0)
+      ++r.waiting;
+    if (beyond && mission.phase() == MissionPhase::kReturn) {
+      r.least = std::min(r.least, pose.x);
+      // The jambs' squares: x 2.5-2.6, |y - 3| >= 0.45.
+      const double dx = std::max({2.5 - pose.x, 0.0, pose.x - 2.6});
+      const double dy = std::max(0.0, 0.45 - std::abs(pose.y - 3.0));
+      r.clearance = std::min(r.clearance, std::hypot(dx, dy));
+    }
+  }
+  EXPECT_TRUE(beyond) << "never drove out through the door: " << mission.lastEvent();
+  return r;
+}
+
+TEST(MissionTest, WithNoWayHomeForLongItGoesHomeOnTheTrailItDroveOutOn) {
+  // The building's seed 25: the lab door drawn 0.5 m wide (a stray cell in it), the robot
+  // waited at the north corridor's end from 1010 s to the end of the run.
+  const TrailHome on = homeOnTheTrail(5);
+  EXPECT_LT(on.least, 1.5) << "did not go home through the door";
+  // 5 waits of home_retry_s (2 s) first: it goes through the stray cells only then. The
+  // trail frees them, not the jambs beyond it.
+  EXPECT_GE(on.waiting, 5 * 40 - 5);
+  EXPECT_LT(on.waiting, 8 * 40);
+  EXPECT_GT(on.clearance, 0.178 + 0.05) << "touched a jamb";
+  // Without the trail it waits beyond the door for good, as it did.
+  const TrailHome off = homeOnTheTrail(0);
+  EXPECT_GT(off.least, 2.6);
+  EXPECT_GT(off.waiting, 5000);
+}
+
 }  // namespace
 }  // namespace coopmap

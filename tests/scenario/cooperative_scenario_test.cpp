@@ -24,6 +24,7 @@
 #include <gtest/gtest.h>
 
 #include "apps/run_world.h"
+#include "tests/scenario/run_summary.h"
 
 namespace coopmap {
 namespace {
@@ -40,12 +41,7 @@ TEST(CooperativeScenarioTest, TwoRobotsShareOnlyCorrectedSortiesAndBeatNaiveShar
     ASSERT_TRUE(r.cooperative);
     const SharedMapResult& s = r.shared_map;
     ASSERT_TRUE(s.computed);
-    std::printf(
-        "seed %llu: shared wall_recall %.3f FOR %.4f coverage %.3f (%d posts); naive "
-        "%.3f %.4f; 90 %% coverage after %.0f s\n",
-        static_cast<unsigned long long>(seed), s.protocol.wall_recall,
-        s.protocol.false_occupied_rate, s.protocol.coverage, s.posts_accepted, s.naive.wall_recall,
-        s.naive.false_occupied_rate, r.time_to_90_s);
+    scenario_test::printSharedMap(seed, r);
     int contacts = 0, self_closed = 0;
     for (const RobotRunResult& robot : r.robots) {
       for (const std::string& line : robot.sortie_log) {
