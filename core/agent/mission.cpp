@@ -240,7 +240,7 @@ void MissionAgent::goHome(double now, const Pose2& odometry, const OccupancyGrid
     }
   }
   // No way with the margin: with the least one that keeps the body off every blocked cell.
-  const double least = std::sqrt(2.0) * map.limits().resolution;
+  const double least = leastMargin(map.limits());
   bool squeezed = false;
   if (!plan.solved() && (home - odometry.translation()).norm() > config_.look_from_m) {
     if (least < config_.planning.margin) {

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
 #include <optional>
 #include <string>
@@ -216,6 +217,8 @@ class MissionAgent {
   // near the robot that it could not start (that is the safety stop's and the bumpers').
   // `margin`: beyond the robot's radius, instead of planning.margin (< 0: planning.margin).
   // `trail`: the cells along this sortie's trail are free (trail_after_waits).
+  // The least margin that keeps the body off every blocked cell: sqrt(2) cells.
+  static double leastMargin(const MapLimits& lim) { return std::sqrt(2.0) * lim.resolution; }
   PlanningMap planningMap(const OccupancyGrid& map, bool allow_unknown, bool recent = true,
                           double margin = -1.0, bool trail = false) const;
   std::vector<Eigen::Vector2d> bumps_;  // where the bumpers touched something this sortie

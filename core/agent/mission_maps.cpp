@@ -127,9 +127,8 @@ void MissionAgent::markVisited(const OccupancyGrid& map, const Pose2& odometry) 
   if (config_.trail_after_waits > 0) {
     if (trail_.cells.empty()) trail_ = GridU8(lim, 0);
     // Wide enough that a path along it keeps the least margin (goHome) from what lies beyond.
-    const double least = std::sqrt(2.0) * lim.resolution;
-    fillDisc(trail_, odometry.translation(), config_.planning.robot_radius + least + lim.resolution,
-             uint8_t{1});
+    fillDisc(trail_, odometry.translation(),
+             config_.planning.robot_radius + leastMargin(lim) + lim.resolution, uint8_t{1});
   }
 }
 

@@ -251,9 +251,8 @@ TEST(MissionTest, GoesHomeThroughADoorWithTooLittleRoomForItsPlanningMargin) {
 // A robot drives out through the door east of home (the map unknown beyond x = 4 m, a
 // frontier there); beyond it, its map becomes all seen, the door with two firm stray cells in
 // its middle (0.45 m between their centres and the jambs': no room for the body and the
-// least margin). Returns its
-// least x once home was out of reach, the control steps (50 ms) it stood waiting, and its
-// least distance to the jambs' cells on its way home.
+// least margin). Returns its least x once home was out of reach, the control steps (50 ms)
+// it stood waiting, and its least distance to the jambs' cells on its way home.
 struct TrailHome {
   double least = 1e9;
   int waiting = 0;
@@ -305,8 +304,8 @@ TrailHome homeOnTheTrail(int trail_after_waits) {
 }
 
 TEST(MissionTest, WithNoWayHomeForLongItGoesHomeOnTheTrailItDroveOutOn) {
-  // The building's seed 25: the lab door drawn 0.5 m wide (a stray cell in it), the robot
-  // waited at the north corridor's end from 1010 s to the end of the run.
+  // The building's seed 25: the lab door (0.9 m) drawn 0.6 m wide with a stray cell in it,
+  // the robot waited at the north corridor's end from 1010 s to the end of the run.
   const TrailHome on = homeOnTheTrail(5);
   EXPECT_LT(on.least, 1.5) << "did not go home through the door";
   // 5 waits of home_retry_s (2 s) first: it goes through the stray cells only then. The
