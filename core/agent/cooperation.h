@@ -25,6 +25,7 @@ struct CooperationConfig {
   CorrectionConfig correction;  // heading-drift by default
   // A fix that moves the robot farther than this (m) or turns it more than this (rad) from
   // where it believed it was is not trusted (the home base was mistaken for something else).
+  // (The robot's move: from its pose on the sortie's odometry at the fix to the fix's.)
   double max_fix_jump_m = 3.0;
   double max_fix_jump_rad = 0.6;
   double max_disagreement_m = 0.3;

@@ -46,8 +46,13 @@ struct MissionConfig {
   // driven this sortie count as free whatever the map drew there since. Its body passed
   // there; a stray cell in a door blocks the map, not the way (the building's seed 25: the
   // lab door, 0.9 m wide, drawn 0.6 m with a stray cell in it; the robot waited from 1010 s
-  // to the end at the north corridor's west end). What the cameras have just seen, the
-  // bumpers and teammates still block it.
+  // to the end at the north corridor's west end). The bumpers and teammates still block it,
+  // and what the cameras have just seen off the trail; not what they see on it: a robot
+  // waiting in one place sees the same things frame after frame, and a door's jambs seen
+  // obliquely put hits in its opening for as long as it waits (seed 41, with a look-again
+  // target as the estimate places home: eric at the north corridor's west end from 1362 s to
+  // the end, the lab door's 0.9 m closed by fresh hits). The safety stop, on the latest
+  // radial map, still stops it short of whatever stands on the trail.
   int trail_after_waits = 5;
   // When no frontier goal is left and some failed this sortie (or had no way to them), after
   // at least min_sortie_m: home to share and try them again next sortie (the imported map is

@@ -74,6 +74,7 @@ PlanningMap MissionAgent::planningMap(const OccupancyGrid& map, bool allow_unkno
       if (!lim.contains(ix, iy)) continue;
       const double d = (lim.cellCenter(ix, iy) - last_pose_.translation()).norm();
       if (d <= keep_out || d > config_.recent_hits_range) continue;
+      if (trail && !trail_.cells.empty() && trail_.at(ix, iy)) continue;  // trail_after_waits
       auto& [frame, frames] = seen_by[lim.index(ix, iy)];
       if (frame != h.frame) {
         frame = h.frame;

@@ -164,6 +164,50 @@ TEST(CooperationTest, ASortieThatNeverLeftHomeIsFixedOnItsOwnTurn) {
   EXPECT_LT(std::abs(wrapAngle(two.fix.theta - at->theta)), 0.5 * M_PI / 180.0);
 }
 
+TEST(CooperationTest, AFixThatOnlyTurnsTheRobotIsNotTakenForAMove) {
+  // Sortie 1 registers the home base at (1.5, 1.5), 2.1 m from the map's origin. Sortie 2
+  // looks again there on odometry that has the robot's position right and its heading 0.3
+  // rad off (slip in turns). The fix turns the robot 0.3 rad and moves it nowhere; as a
+  // correction about the map's origin it is a 0.63 m translation, which a 0.5 m bound on the
+  // robot's move must not refuse.
+  CooperationConfig config;
+  config.max_fix_jump_m = 0.5;
+  LocalSharedMap shared(MapLimits::covering({-1, -1}, {7, 5}, 0.05), OccupancyConfig{});
+  HomeBaseCooperation coop("jose", homeBase(), 0.6, &shared, config);
+  const Eigen::Vector2d home(1.5, 1.5);
+  double t = 0.0;
+  TraverseLog first;
+  first.robot = "jose";
+  lookAround(first, home, 0.0, t);
+  lookAround(first, home, 6.6, t);
+  ASSERT_TRUE(coop.endSortie(first).fixed);
+  TraverseLog second;
+  second.robot = "jose";
+  lookAround(second, home, 0.5, t);
+  constexpr double kOff = 0.3;
+  for (TraverseEntry& e : second.entries)
+    e.scan.odometry.theta = wrapAngle(e.scan.odometry.theta + kOff);
+  const SortieReport r = coop.locate(second);
+  ASSERT_TRUE(r.fixed) << r.method;
+  EXPECT_GT(r.correction.translation().norm(), config.max_fix_jump_m) << "the lever of the turn";
+  EXPECT_LT((r.fix.translation() - home).norm(), 0.05);
+  const Pose2* at = nullptr;
+  for (const TraverseEntry& e : second.entries)
+    if (e.scan.stamp == r.fix_stamp) at = &e.scan.odometry;
+  ASSERT_NE(at, nullptr);
+  EXPECT_NEAR(wrapAngle(r.fix.theta - at->theta), -kOff, 1.0 * M_PI / 180.0);
+
+  // One that does move the robot more than the bound is refused (the home-base search keeps
+  // to the bound around where the robot believes it is), and the report says why.
+  TraverseLog third;
+  third.robot = "jose";
+  lookAround(third, home, 0.5, t);
+  for (TraverseEntry& e : third.entries) e.scan.odometry.x += 0.7;
+  const SortieReport far = coop.locate(third);
+  EXPECT_FALSE(far.fixed);
+  EXPECT_NE(far.method.find("farther than it can be off"), std::string::npos) << far.method;
+}
+
 // A 12 m x 2 m corridor with alcoves every 2 m on both sides (so that a stretch's alignment
 // is pinned along it too), walls as segments; x along the corridor.
 std::vector<test::Segment> corridor() {

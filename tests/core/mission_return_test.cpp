@@ -252,13 +252,17 @@ TEST(MissionTest, GoesHomeThroughADoorWithTooLittleRoomForItsPlanningMargin) {
 // frontier there); beyond it, its map becomes all seen, the door with two firm stray cells in
 // its middle (0.45 m between their centres and the jambs': no room for the body and the
 // least margin). Returns its least x once home was out of reach, the control steps (50 ms)
-// it stood waiting, and its least distance to the jambs' cells on its way home.
+// it stood waiting, and its least distance to the jambs' cells on its way home. With
+// `smear`, while it stands beyond the door its cameras see hits in the door's opening at
+// every frame (3 a second), as a door's jambs seen obliquely put them there; driving, they
+// see the opening as it is.
 struct TrailHome {
   double least = 1e9;
   int waiting = 0;
   double clearance = 1e9;
+  int smeared = 0;  // frames with hits in the opening, within the recent hits' range
 };
-TrailHome homeOnTheTrail(int trail_after_waits) {
+TrailHome homeOnTheTrail(int trail_after_waits, bool smear = false) {
   const Pose2 home(1.0, 3.0, 0.0);
   OccupancyGrid out = wallWithADoor();
   OccupancyGrid stray = out;
@@ -279,15 +283,33 @@ TrailHome homeOnTheTrail(int trail_after_waits) {
   c.look_from_m = 0.5;
   c.planning.margin = 0.12;  // the building's
   c.trail_after_waits = trail_after_waits;
+  c.recent_hits_s = 4.0;  // the building's
   MissionAgent mission(home, c);
   Pose2 pose = home;
   const double dt = 0.05;
-  bool beyond = false;
+  bool beyond = false, standing = false;
   TrailHome r;
   for (int step = 0; step < 12000 && mission.phase() != MissionPhase::kAtHome; ++step) {
     beyond = beyond || pose.x > 3.2;
-    const MotionCommand cmd = mission.update(step * dt, pose, beyond ? stray : out, nullptr);
+    RadialMap frame;
+    const bool see = smear && beyond && standing && step % 7 == 0;
+    if (see) {
+      frame.stamp = step * dt;
+      frame.odometry = pose;
+      for (const double y : {2.95, 3.0, 3.05}) {  // the opening's west mouth
+        const Eigen::Vector2d p = pose.inverse() * Eigen::Vector2d(2.3, y);
+        RadialReading hit;
+        hit.kind = RadialKind::kHit;
+        hit.range = p.norm();
+        hit.bearing = std::atan2(p.y(), p.x());
+        frame.readings.push_back(hit);
+      }
+      r.smeared += frame.readings.front().range <= c.recent_hits_range;
+    }
+    const MotionCommand cmd =
+        mission.update(step * dt, pose, beyond ? stray : out, see ? &frame : nullptr);
     pose = pose * Pose2(cmd.linear * dt, 0.0, cmd.angular * dt);
+    standing = cmd.linear == 0.0 && cmd.angular == 0.0;
     if (mission.lastEvent().find("waiting to plan again") != std::string::npos &&
         cmd.linear == 0.0 && cmd.angular == 0.0)
       ++r.waiting;
@@ -317,6 +339,13 @@ TEST(MissionTest, WithNoWayHomeForLongItGoesHomeOnTheTrailItDroveOutOn) {
   const TrailHome off = homeOnTheTrail(0);
   EXPECT_GT(off.least, 2.6);
   EXPECT_GT(off.waiting, 5000);
+  // The building's seed 41: waiting, its cameras kept seeing hits in the door's opening; on
+  // the trail they do not block it (it drove there), and it goes home all the same.
+  const TrailHome smeared = homeOnTheTrail(5, true);
+  EXPECT_GT(smeared.smeared, 20) << "the cameras saw nothing in the opening within range";
+  EXPECT_LT(smeared.least, 1.5) << "did not go home through the door";
+  EXPECT_LT(smeared.waiting, 8 * 40);
+  EXPECT_GT(smeared.clearance, 0.178 + 0.05) << "touched a jamb";
 }
 
 }  // namespace
