@@ -34,6 +34,10 @@ struct RobotRun {
   // Looks at the home base that found no fix, this sortie: the robot drives to where its
   // estimate places the start and looks again (kLooksAgain times) before it stops, lost.
   int looks_again = 0;
+  // The sortie's entries before this are not part of the next look: each look at the home
+  // base sees only its own turn (a robot looking again where it stood saw, in its earlier
+  // turn's scans, whoever had hidden the home base).
+  size_t look_from = 0;
   Pose2 home;  // its start (the map frame is its odometry frame at the start)
   // The estimate's frame (X_MO) when the sortie began. The tracker moves the estimate during
   // the sortie; the sortie is corrected on its odometry chain from this frame.

@@ -59,6 +59,12 @@ void addMissionSettingOptions(CLI::App& cmd, RunOptions& run) {
           "m; a camera column that matches nothing but sees the floor end nearer than this "
           "depth has met a textureless wall there (0: off) [default: the world's, else 0]")
       ->check(CLI::Range(0.0, 5.0));
+  cmd.add_option_function<int>(
+         "--beyond-support", [&run](const int& v) { run.beyond_support = v; },
+         "Pixels of a camera column, beyond the range and agreeing, that see it free to the "
+         "range (1: any one; a textureless wall seen at a grazing angle gives stray far "
+         "mismatches) [default: the world's, else 1]")
+      ->check(CLI::Range(1, 100));
   setting(cmd, "--goal-clearance", run.goal_clearance,
           "With --explore: m; frontier goals this far from anything blocked are preferred (0: "
           "the nearest free cell) [default: the world's, else 0]")

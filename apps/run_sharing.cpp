@@ -182,7 +182,7 @@ void endSortie(RobotRun& r, LocalSharedMap& live, double now, double reapproach_
   if (!r.reapproaching) {
     // Back away from the start (odometry drifted): the home base looks different from
     // there. Drive to the start by a first fix and look again.
-    const SortieReport first = r.coop->locate(sortie);
+    const SortieReport first = r.coop->locate(sortie, std::nullopt, r.look_from);
     if (!first.fixed && r.looks_again < kLooksAgain) {
       // No fix from this look (someone in the view, the look fitting the shared map
       // elsewhere): to the start as the live estimate places it (the mission's frame: the
@@ -190,6 +190,7 @@ void endSortie(RobotRun& r, LocalSharedMap& live, double now, double reapproach_
       // places it: on a long sortie the chain drifts metres from the estimate, and seed 48's
       // eric (--doorway-width 1.2) drove 2.4 m off into the lab's shelf to look there.
       ++r.looks_again;
+      r.look_from = sortie.entries.size();
       char line[160];
       std::snprintf(line, sizeof line, "no fix from the look at %.0f s: looking again (%d of %d; ",
                     now, r.looks_again, kLooksAgain);
@@ -200,6 +201,7 @@ void endSortie(RobotRun& r, LocalSharedMap& live, double now, double reapproach_
     const double off = (first.fix.translation() - r.home.translation()).norm();
     if (first.fixed && off > reapproach_m) {
       r.reapproaching = true;
+      r.look_from = sortie.entries.size();
       char line[160];
       std::snprintf(line, sizeof line,
                     "back %.2f m from the start at %.0f s: driving there by a first fix", off, now);
@@ -219,9 +221,29 @@ void endSortie(RobotRun& r, LocalSharedMap& live, double now, double reapproach_
   }
   std::optional<Eigen::Vector2d> expected;
   if (r.reapproaching) expected = r.home.translation();
+  if (r.reapproaching && r.looks_again < kLooksAgain) {
+    const SortieReport second = r.coop->locate(sortie, expected, r.look_from);
+    if (!second.fixed) {
+      // The look after driving to the start by the first fix disagrees with it (or found
+      // nothing): one of the two was wrong (the first look's home base hidden, it fitted
+      // something else) and the robot cannot tell which. Back to the start as the live
+      // estimate places it, and a fresh look there.
+      r.reapproaching = false;
+      r.look_from = sortie.entries.size();
+      ++r.looks_again;
+      char line[160];
+      std::snprintf(line, sizeof line,
+                    "no trusted fix from the look at %.0f s: looking again (%d of %d; ", now,
+                    r.looks_again, kLooksAgain);
+      r.result.sortie_log.push_back(line + second.method + ")");
+      r.mission->returnAgain(r.home);
+      return;
+    }
+  }
   r.reapproaching = false;
   r.looks_again = 0;
-  const SortieReport rep = r.coop->endSortie(sortie, expected, &estimate);
+  const SortieReport rep = r.coop->endSortie(sortie, expected, &estimate, r.look_from);
+  r.look_from = 0;
   if (rep.fixed) r.mapper->setFrame(rep.correction * r.sortie_frame);
   if (rep.posted && r.calibrate) r.calibration.addSortie(rep.bias, rep.length_m);
   r.sortie_frame = r.mapper->frame();

@@ -119,6 +119,10 @@ RunResult runWorld(const RunOptions& opt) {
                                             : world.exploration.floor_edge_depth
                                                 ? *world.exploration.floor_edge_depth
                                                 : mapper_config.radial.floor_edge_depth;
+    mapper_config.radial.beyond_support =
+        opt.beyond_support
+            ? *opt.beyond_support
+            : world.exploration.beyond_support.value_or(mapper_config.radial.beyond_support);
     r.mapper = std::make_unique<Mapper>(model.description, limits, mapper_config);
     r.mapper_description = model.description;
     r.mapper->setRobotName(spec.name);
@@ -170,6 +174,7 @@ RunResult runWorld(const RunOptions& opt) {
           mission.frontiers.doorway_width,
           mission.retry_frontiers,
           mapper_config.radial.floor_edge_depth,
+          mapper_config.radial.beyond_support,
           pick(opt.shaped_closures, we.shaped_closures, opt.cooperation.closure_shape),
           pick(opt.closure_seen_points, we.closure_seen_points,
                opt.cooperation.closure_alignment.seen_points_only),

@@ -54,6 +54,7 @@ struct RunOptions {
   std::optional<double> doorway_width;          // m: FrontierConfig::doorway_width (0: off)
   std::optional<bool> retry_frontiers;          // MissionConfig::retry_frontiers
   std::optional<double> floor_edge_depth;       // m: RadialMapConfig::floor_edge_depth (0: off)
+  std::optional<int> beyond_support;            // pixels: RadialMapConfig::beyond_support
   std::optional<bool> shaped_closures;          // CooperationConfig::closure_shape
   std::optional<bool> closure_seen_points;      // AlignmentConfig::seen_points_only (closures)
   std::optional<bool> closure_decided_points;   // AlignmentConfig::decided_points_only (same)
@@ -224,6 +225,7 @@ struct RunResult {
     double fringe_clearance = 0.0, goal_clearance = 0.0, doorway_width = 0.0;
     bool retry_frontiers = false;
     double floor_edge_depth = 0.0;
+    int beyond_support = 1;
     bool shaped_closures = false;
     bool closure_seen_points = false;
     bool closure_decided_points = false;

@@ -102,6 +102,7 @@ void writeOutputs(const RunOptions& opt, const sim::World& world, const RunResul
     j.value("fringe_clearance", m->fringe_clearance).value("goal_clearance", m->goal_clearance);
     j.value("doorway_width", m->doorway_width);
     j.value("retry_frontiers", m->retry_frontiers).value("floor_edge_depth", m->floor_edge_depth);
+    j.value("beyond_support", m->beyond_support);
     j.value("shaped_closures", m->shaped_closures).value("bump_away", m->bump_away);
     j.value("closure_seen_points", m->closure_seen_points);
     j.value("closure_decided_points", m->closure_decided_points);

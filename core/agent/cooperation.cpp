@@ -114,7 +114,8 @@ HomeBaseCooperation::SharedView::SharedView(const SharedMapService& shared,
 }
 
 HomeBaseCooperation::Located HomeBaseCooperation::locateSortie(const TraverseLog& sortie,
-                                                               const SharedView& view) const {
+                                                               const SharedView& view,
+                                                               size_t look_from) const {
   Located l;
   SortieReport& rep = l.rep;
   rep.sortie = static_cast<int>(reports_.size()) + 1;
@@ -136,14 +137,14 @@ HomeBaseCooperation::Located HomeBaseCooperation::locateSortie(const TraverseLog
   HomeReturn ret;
   size_t offset = 0;
   if (!reference_) {
-    l.protocol = runHomeBaseProtocol(sortie, nominal_, arm_length_, bounded);
+    l.protocol = runHomeBaseProtocol(sortie, nominal_, arm_length_, bounded, look_from);
     ret = l.protocol->result;
     rep.method = l.protocol->method;
   } else {
     TraverseLog joined = reference_log_;
     offset = joined.entries.size();
     joined.entries.insert(joined.entries.end(), sortie.entries.begin(), sortie.entries.end());
-    ret = localizeFromLog(joined, home_, arm_length_, bounded, &*reference_, offset);
+    ret = localizeFromLog(joined, home_, arm_length_, bounded, &*reference_, offset + look_from);
     rep.method = ret.refined ? "alignment to the reference" : "corners";
     if (ret.status == HomeReturnStatus::kOk && ret.observation.entry < offset) {
       rep.method = "the fix fell on a reference scan, not on the return turn";
@@ -280,17 +281,8 @@ bool HomeBaseCooperation::checkRival(const TraverseLog& sortie, const ScanAligne
   return false;
 }
 
-SortieReport HomeBaseCooperation::locate(const TraverseLog& sortie) const {
-  return locateSortie(sortie, SharedView(*shared_, config_.closure_alignment)).rep;
-}
-
-SortieReport HomeBaseCooperation::endSortie(const TraverseLog& sortie,
-                                            const std::optional<Eigen::Vector2d>& expected,
-                                            const std::vector<Pose2>* estimate) {
-  // The shared map as it is now, prepared for alignment (once).
-  const SharedView view(*shared_, config_.closure_alignment);
-  Located l = locateSortie(sortie, view);
-  SortieReport& rep = l.rep;
+void HomeBaseCooperation::checkExpected(SortieReport& rep,
+                                        const std::optional<Eigen::Vector2d>& expected) const {
   if (rep.fixed && expected &&
       (rep.fix.translation() - *expected).norm() > config_.max_disagreement_m) {
     rep.fixed = false;
@@ -298,6 +290,25 @@ SortieReport HomeBaseCooperation::endSortie(const TraverseLog& sortie,
         "; fix not trusted: " + std::to_string((rep.fix.translation() - *expected).norm()) +
         " m from where the first fix sent the robot";
   }
+}
+
+SortieReport HomeBaseCooperation::locate(const TraverseLog& sortie,
+                                         const std::optional<Eigen::Vector2d>& expected,
+                                         size_t look_from) const {
+  SortieReport rep =
+      locateSortie(sortie, SharedView(*shared_, config_.closure_alignment), look_from).rep;
+  checkExpected(rep, expected);
+  return rep;
+}
+
+SortieReport HomeBaseCooperation::endSortie(const TraverseLog& sortie,
+                                            const std::optional<Eigen::Vector2d>& expected,
+                                            const std::vector<Pose2>* estimate, size_t look_from) {
+  // The shared map as it is now, prepared for alignment (once).
+  const SharedView view(*shared_, config_.closure_alignment);
+  Located l = locateSortie(sortie, view, look_from);
+  SortieReport& rep = l.rep;
+  checkExpected(rep, expected);
   auto done = [&]() {
     rep.map_version = shared_->snapshot().version;
     reports_.push_back(rep);

@@ -210,14 +210,20 @@ class HomeBaseCooperation {
   // With `expected`: where the robot should be at the fix (it drove to its start by a
   // first fix); a fix farther than max_disagreement_m from it is not trusted. With
   // `estimate` (the robot's live estimate at each entry, map frame), the closures to the
-  // shared map also try each stretch where the estimate had it (see mapClosures).
+  // shared map also try each stretch where the estimate had it (see mapClosures). Entries
+  // before `look_from` are never part of the look (the return turn): a robot that looked
+  // again where it stood would otherwise see what hid the home base at its earlier look.
   SortieReport endSortie(const TraverseLog& sortie,
                          const std::optional<Eigen::Vector2d>& expected = std::nullopt,
-                         const std::vector<Pose2>* estimate = nullptr);
+                         const std::vector<Pose2>* estimate = nullptr, size_t look_from = 0);
   // Localizes only (nothing posted, nothing registered): where is the robot now? For a
   // robot that came back away from its start: it drives to the start by this fix and
-  // looks again, so that endSortie sees the home base as the reference scans did.
-  SortieReport locate(const TraverseLog& sortie) const;
+  // looks again, so that endSortie sees the home base as the reference scans did. With
+  // `expected`, the same trust check as endSortie's: before endSortie, it tells whether the
+  // look after driving there agrees with the first (when not, one of the two was wrong).
+  SortieReport locate(const TraverseLog& sortie,
+                      const std::optional<Eigen::Vector2d>& expected = std::nullopt,
+                      size_t look_from = 0) const;
 
   const std::vector<SortieReport>& reports() const { return reports_; }
   // Every entry of the sorties posted so far at its corrected pose (map frame), in order.
@@ -249,11 +255,14 @@ class HomeBaseCooperation {
     std::optional<OccupancyGrid> map;
     std::optional<ScanAligner> aligner;  // over *map
   };
-  Located locateSortie(const TraverseLog& sortie, const SharedView& view) const;
+  Located locateSortie(const TraverseLog& sortie, const SharedView& view, size_t look_from) const;
   // The rival check (CooperationConfig::rival_search_m) of a located sortie's fix against
   // the shared map: true when it stands, possibly moved (noted in the report's method); false
   // when it is not trusted.
   bool checkRival(const TraverseLog& sortie, const ScanAligner& shared, Located& l) const;
+  // Not trusted (noted in the method) when the fix is farther than max_disagreement_m from
+  // where the robot was expected.
+  void checkExpected(SortieReport& rep, const std::optional<Eigen::Vector2d>& expected) const;
   uint64_t next_post_ = 1;
 };
 

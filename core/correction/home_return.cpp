@@ -356,13 +356,14 @@ HomeReturn localizeFromLog(const TraverseLog& log, const HomeBase& home, double 
 }
 
 HomeBaseProtocol runHomeBaseProtocol(const TraverseLog& log, const HomeBase& nominal,
-                                     double arm_length, const HomeReturnConfig& config) {
+                                     double arm_length, const HomeReturnConfig& config,
+                                     size_t first_return) {
   HomeBaseProtocol p;
   p.registration = registerHomeBaseFromLog(log, nominal.first.position, nominal.second.position,
                                            arm_length, config);
   p.home = p.registration.home ? *p.registration.home : nominal;
   p.reference.emplace(homeBaseReferenceMap(log, config));
-  p.result = localizeFromLog(log, p.home, arm_length, config, &*p.reference);
+  p.result = localizeFromLog(log, p.home, arm_length, config, &*p.reference, first_return);
   p.method =
       std::string(p.registration.home ? "registered" : "nominal") + " corners" +
       (p.result.corner_fix.status == HomeBaseStatus::kOk ? "" : " (not found)") +

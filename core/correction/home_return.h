@@ -104,7 +104,8 @@ HomeReturn localizeFromLog(const TraverseLog& log, const HomeBase& home, double 
 
 // The home-base protocol on a whole log: registration from the start turn (corners near
 // `nominal`, the home base as designed; if they are not found, the nominal corners stand in:
-// the reference map does the fine work), the reference map, and localization at return.
+// the reference map does the fine work), the reference map, and localization at return
+// (entries before `first_return` never part of the return turn, as for localizeFromLog).
 struct HomeBaseProtocol {
   HomeBaseRegistration registration;  // the robot's own, if it found the corners
   HomeBase home;                      // what localization used: registered or nominal
@@ -113,6 +114,7 @@ struct HomeBaseProtocol {
   std::string method;  // how the fix was found, for people
 };
 HomeBaseProtocol runHomeBaseProtocol(const TraverseLog& log, const HomeBase& nominal,
-                                     double arm_length, const HomeReturnConfig& config = {});
+                                     double arm_length, const HomeReturnConfig& config = {},
+                                     size_t first_return = 0);
 
 }  // namespace coopmap

@@ -15,14 +15,16 @@ namespace coopmap {
 
 namespace {
 
-// Obstacle points within max_range of the entries [from, to], each at its odometry pose.
+// Obstacle points within max_range of the entries [from, to], each at its odometry pose: only
+// matched surfaces (a floor's end lies where the floor stops being matched, which moves with
+// the view, and its range error grows with depth as a scale error would).
 std::vector<Eigen::Vector2d> pointsOf(const TraverseLog& log, size_t from, size_t to,
                                       double max_range) {
   std::vector<Eigen::Vector2d> out;
   for (size_t k = from; k <= to; ++k) {
     const RadialMap& scan = log.entries[k].scan;
     for (const RadialReading& r : scan.readings)
-      if (r.kind == RadialKind::kHit && r.range <= max_range)
+      if (r.kind == RadialKind::kHit && !r.floor_edge && r.range <= max_range)
         out.push_back(scan.odometry *
                       (scan.sensor_origin +
                        r.range * Eigen::Vector2d(std::cos(r.bearing), std::sin(r.bearing))));

@@ -13,6 +13,7 @@ namespace {
 constexpr char kMagic[8] = {'C', 'M', 'T', 'R', 'A', 'V', 'L', 'G'};
 constexpr uint32_t kRecordMagic = 0x4E414353;  // "SCAN" read as little-endian bytes
 constexpr size_t kReadingBytes = 4 * 8 + 1;
+constexpr uint8_t kFloorEdgeBit = 0x80;  // in a reading's kind byte, from version 2
 constexpr size_t kFixedPayloadBytes = 4 * 8 + 1 + 3 * 8 + 4;
 
 uint32_t crc(const char* data, size_t n) { return crc32Of(data, n); }
@@ -75,7 +76,8 @@ std::string encodeTraverseLog(const TraverseLog& log) {
       p.put(r.range);
       p.put(r.sigma);
       p.put(r.disparity);
-      p.put(static_cast<uint8_t>(r.kind));
+      p.put(
+          static_cast<uint8_t>(static_cast<uint8_t>(r.kind) | (r.floor_edge ? kFloorEdgeBit : 0)));
     }
     Writer rec;
     rec.put(kRecordMagic);
@@ -94,8 +96,8 @@ TraverseLog decodeTraverseLog(const std::string& bytes, const std::string& sourc
     fail(source, "not a coopmap traverse log (expected magic 'CMTRAVLG' at byte 0)");
   Reader h(bytes, sizeof(kMagic), bytes.size());
   const uint32_t version = h.get<uint32_t>();
-  if (version != TraverseLog::kVersion)
-    fail(source, "traverse log version " + std::to_string(version) + " (this build reads " +
+  if (version < 1 || version > TraverseLog::kVersion)
+    fail(source, "traverse log version " + std::to_string(version) + " (this build reads 1 to " +
                      std::to_string(TraverseLog::kVersion) + ")");
   const uint32_t name_length = h.get<uint32_t>();
   if (h.left() < static_cast<size_t>(name_length) + 4)
@@ -159,9 +161,13 @@ TraverseLog decodeTraverseLog(const std::string& bytes, const std::string& sourc
       r.range = p.get<double>();
       r.sigma = p.get<double>();
       r.disparity = p.get<double>();
-      const uint8_t kind = p.get<uint8_t>();
-      if (kind > 2)
-        fail(source, where + ": reading kind " + std::to_string(kind) + ", expected 0, 1 or 2");
+      const uint8_t byte = p.get<uint8_t>();
+      const uint8_t kind = version >= 2 ? static_cast<uint8_t>(byte & ~kFloorEdgeBit) : byte;
+      r.floor_edge = version >= 2 && (byte & kFloorEdgeBit) != 0;
+      if (kind > 2 || (r.floor_edge && kind != 1))
+        fail(source, where + ": reading kind " + std::to_string(byte) +
+                         (version >= 2 ? ", expected 0, 1, 2 or 129 (a hit at the floor's end)"
+                                       : ", expected 0, 1 or 2"));
       r.kind = static_cast<RadialKind>(kind);
     }
     log.entries.push_back(std::move(e));

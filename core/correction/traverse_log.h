@@ -2,8 +2,8 @@
 // radial map it made, the odometry pose it was taken at, and the kind of motion segment it
 // was executing. Back at the home base the log is corrected and the map rebuilt from it.
 //
-// File format, version 1 (all numbers little-endian; f64 = IEEE 754 double):
-//   header  : 8 bytes magic "CMTRAVLG", u32 version (= 1), u32 name length N, N bytes of
+// File format, version 2 (all numbers little-endian; f64 = IEEE 754 double):
+//   header  : 8 bytes magic "CMTRAVLG", u32 version (= 2), u32 name length N, N bytes of
 //             robot name (UTF-8), u32 CRC-32 of the header bytes before it
 //   records : until the end of the file, each
 //             u32 record magic 0x4E414353 ("SCAN"), u32 payload length L, L bytes of payload,
@@ -12,7 +12,9 @@
 //             u8 segment (0 stop, 1 turn, 2 straight), f64 sensor_origin x, y (m, robot frame),
 //             f64 max_range (m), u32 reading count R, then R readings of
 //             f64 bearing (rad), f64 range (m), f64 sigma (m), f64 disparity (px), u8 kind
-//             (0 none, 1 hit, 2 beyond)
+//             (0 none, 1 hit, 2 beyond; + 128 for a hit at the floor's end,
+//             RadialReading::floor_edge). Version 1, the same without the floor-edge bit, is
+//             read too.
 // Values are stored exactly, so a loaded log rebuilds a map bit for bit. Readers reject
 // unknown versions, bad magic, truncated records and checksum mismatches with an error
 // naming the file, the record and its byte offset.
@@ -41,7 +43,7 @@ struct TraverseEntry {
 };
 
 struct TraverseLog {
-  static constexpr uint32_t kVersion = 1;
+  static constexpr uint32_t kVersion = 2;
   std::string robot;
   std::vector<TraverseEntry> entries;
 };

@@ -17,6 +17,7 @@ void RadialMapConfig::validate() const {
   if (!(min_height >= 0.0)) bad("min_height", "a number >= 0", min_height);
   if (!(max_range > 0.0)) bad("max_range", "a positive number", max_range);
   if (min_support < 1) bad("min_support", "an integer >= 1", min_support);
+  if (beyond_support < 1) bad("beyond_support", "an integer >= 1", beyond_support);
   if (!(support_tolerance > 0.0)) bad("support_tolerance", "a positive number", support_tolerance);
   if (!(spike_ratio >= 0.0 && spike_ratio < 1.0))
     bad("spike_ratio", "a number in [0, 1)", spike_ratio);
@@ -44,14 +45,15 @@ RadialMap buildRadialMap(const cv::Mat& disparity, const RobotDescription& robot
   out.max_range = config.max_range;
   out.readings.resize(k.width);
 
-  std::vector<float> band;
+  std::vector<float> band, far;
   band.reserve(k.height);
+  far.reserve(k.height);
   for (int u = 0; u < k.width; ++u) {
     RadialReading& r = out.readings[u];
     const double slope = (u - k.cx) / k.fx;  // X/Z in the camera frame
     r.bearing = std::atan2(-slope, 1.0);
     band.clear();
-    bool beyond = false;
+    far.clear();
     for (int v = 0; v < k.height; ++v) {
       const float d = disparity.at<float>(v, u);
       if (!(d > 0.0f)) continue;
@@ -59,7 +61,7 @@ RadialMap buildRadialMap(const cv::Mat& disparity, const RobotDescription& robot
       const double height = cam_z - (v - k.cy) * z / k.fy;
       if (height < config.min_height || height > robot.swept_height) continue;
       if (d < min_disp_in_range) {
-        beyond = true;
+        far.push_back(d);
         continue;
       }
       band.push_back(d);
@@ -79,6 +81,15 @@ RadialMap buildRadialMap(const cv::Mat& disparity, const RobotDescription& robot
       r.sigma = z * z / fb * config.disparity_sigma * std::sqrt(1.0 + slope * slope);
       r.kind = RadialKind::kHit;
       break;
+    }
+    // Beyond max_range where beyond_support of the column's far returns agree.
+    std::sort(far.begin(), far.end(), std::greater<float>());
+    bool beyond = false;
+    for (size_t i = 0; i < far.size() && !beyond; ++i) {
+      size_t support = 0;
+      for (size_t j = i; j < far.size() && far[i] - far[j] <= config.support_tolerance; ++j)
+        ++support;
+      beyond = static_cast<int>(support) >= config.beyond_support;
     }
     if (r.kind == RadialKind::kNone && beyond) {
       r.kind = RadialKind::kBeyond;
@@ -108,6 +119,7 @@ RadialMap buildRadialMap(const cv::Mat& disparity, const RobotDescription& robot
           r.sigma = std::max(config.floor_edge_sigma,
                              z * z / fb * config.disparity_sigma * std::sqrt(1.0 + slope * slope));
           r.kind = RadialKind::kHit;
+          r.floor_edge = true;
         }
         break;
       }

@@ -32,6 +32,14 @@ struct RadialMapConfig {
   // nearer to 11 cm farther than the wall): free space is marked only up to its uncertainty
   // region, so a floor's end placed too far does not clear what stereo saw there.
   double floor_edge_sigma = 0.08;
+  // Beyond the paper: pixels beyond max_range in a column, agreeing within
+  // support_tolerance, that make it "free to max_range" (kBeyond). 1, the default: any one
+  // (the paper's rule). On a textureless wall seen at a grazing angle a stray mismatch or
+  // two beyond max_range clears the wall's whole length behind it; the building's plaster
+  // wall is drawn with 3 (as min_support for a hit). In a room whose walls all have texture
+  // a far view seen by only a pixel or two is mostly a true one, and 3 there made the maps
+  // worse (measured, README).
+  int beyond_support = 1;
 
   void validate() const;  // throws std::invalid_argument naming the field
 };
@@ -48,6 +56,9 @@ struct RadialReading {
   double sigma = 0.0;      // m, 1-sigma range uncertainty (grows with depth squared)
   double disparity = 0.0;  // px (reference baseline)
   RadialKind kind = RadialKind::kNone;
+  // A kHit placed where the floor's view ends (floor_edge_depth), not on a matched surface:
+  // its range is the floor's, biased by how far the unmatched wall's foot hides it.
+  bool floor_edge = false;
 };
 
 struct RadialMap {

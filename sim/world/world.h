@@ -190,6 +190,7 @@ struct World {
     std::optional<double> doorway_width;           // m: FrontierConfig::doorway_width
     std::optional<bool> retry_frontiers;           // MissionConfig::retry_frontiers
     std::optional<double> floor_edge_depth;        // m: RadialMapConfig::floor_edge_depth
+    std::optional<int> beyond_support;             // pixels: RadialMapConfig::beyond_support
     std::optional<bool> shaped_closures;           // CooperationConfig::closure_shape
     std::optional<bool> bump_away;                 // MissionConfig::bump_away
     std::optional<double> visited_radius;          // m: MissionConfig::visited_radius

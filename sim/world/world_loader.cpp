@@ -226,6 +226,7 @@ World parseWorld(const std::string& text, const std::string& file) {
                           "goal_clearance",
                           "retry_frontiers",
                           "floor_edge_depth",
+                          "beyond_support",
                           "shaped_closures",
                           "bump_away",
                           "visited_radius",
@@ -280,6 +281,8 @@ World parseWorld(const std::string& text, const std::string& file) {
       if (mission->has("closure_decided_points"))
         e.closure_decided_points = (*mission)["closure_decided_points"].asBool();
       if (mission->has("bump_away")) e.bump_away = (*mission)["bump_away"].asBool();
+      if (mission->has("beyond_support"))
+        e.beyond_support = (*mission)["beyond_support"].asInt(1, 100);
       if (mission->has("closure_scans"))
         e.closure_scans = (*mission)["closure_scans"].asInt(1, 100);
       if (mission->has("look_again_gain"))

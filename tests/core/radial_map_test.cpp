@@ -117,6 +117,31 @@ TEST(RadialMapTest, UnsupportedSinglePixelIsNotAReturn) {
   EXPECT_EQ(m.readings[80].kind, RadialKind::kNone);
 }
 
+TEST(RadialMapTest, ScatteredFarMismatchesAreNotAViewBeyondRange) {
+  // A textureless wall 3 m away: no disparity on it but scattered mismatches far beyond
+  // range (column 80: two disagreeing, column 81: two alike). With beyond_support 3 (the
+  // building's) only column 82, whose far view three pixels agree on, is free to the range:
+  // a stray far match in front of the building's plaster wall had cleared the wall's whole
+  // length behind it.
+  const RobotDescription r = robot();
+  cv::Mat d(120, 160, CV_32F, cv::Scalar(kInvalidDisparity));
+  // (Rows 60-62 look just below the horizon: 0.5-0.85 m up at 9 m, within the swept height.)
+  d.at<float>(60, 80) = 0.9f;
+  d.at<float>(62, 80) = 1.8f;
+  d.at<float>(60, 81) = 0.9f;
+  d.at<float>(62, 81) = 0.9f;
+  for (int v = 60; v < 63; ++v) d.at<float>(v, 82) = 1.0f + 0.1f * (v - 60);
+  RadialMapConfig three;
+  three.beyond_support = 3;
+  const RadialMap m = buildRadialMap(d, r, three, 0.0, Pose2());
+  EXPECT_EQ(m.readings[80].kind, RadialKind::kNone);
+  EXPECT_EQ(m.readings[81].kind, RadialKind::kNone);
+  EXPECT_EQ(m.readings[82].kind, RadialKind::kBeyond);
+  // The paper's rule (the default): any one far pixel.
+  const RadialMap any = buildRadialMap(d, r, RadialMapConfig{}, 0.0, Pose2());
+  for (int u = 80; u < 83; ++u) EXPECT_EQ(any.readings[u].kind, RadialKind::kBeyond) << u;
+}
+
 TEST(RadialMapTest, SpikeBetweenAgreeingNeighboursIsRemoved) {
   const RobotDescription r = robot();
   cv::Mat d = wallAndFloor(r, 3.0, 2.5);

@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include "core/io/binary_io.h"
+
 namespace coopmap {
 namespace {
 
@@ -27,6 +29,7 @@ TraverseLog sampleLog() {
       r.sigma = 0.01 * k;
       r.disparity = 12.0 / (k + 1);
       r.kind = static_cast<RadialKind>(k % 3);
+      r.floor_edge = k == 4;  // a hit (4 % 3 == 1) at the floor's end
       e.scan.readings.push_back(r);
     }
     log.entries.push_back(e);
@@ -64,8 +67,28 @@ TEST(TraverseLogTest, RoundTripIsExact) {
       EXPECT_EQ(a.scan.readings[k].sigma, b.scan.readings[k].sigma);
       EXPECT_EQ(a.scan.readings[k].disparity, b.scan.readings[k].disparity);
       EXPECT_EQ(a.scan.readings[k].kind, b.scan.readings[k].kind);
+      EXPECT_EQ(a.scan.readings[k].floor_edge, b.scan.readings[k].floor_edge);
     }
   }
+  EXPECT_TRUE(back.entries[0].scan.readings[4].floor_edge);
+}
+
+TEST(TraverseLogTest, ReadsVersionOneLogs) {
+  // Version 1 had no floor-edge bit: the same bytes with version 1 in the header (and its
+  // checksum made again) read back alike, every reading off the floor's end.
+  TraverseLog log = sampleLog();
+  for (TraverseEntry& e : log.entries)
+    for (RadialReading& r : e.scan.readings) r.floor_edge = false;
+  std::string bytes = encodeTraverseLog(log);
+  bytes[8] = 1;
+  // Header: 8 magic + 4 version + 4 name length + 4 name, then its CRC.
+  const uint32_t header_crc = crc32Of(bytes.data(), 20);
+  for (int i = 0; i < 4; ++i) bytes[20 + i] = static_cast<char>((header_crc >> (8 * i)) & 0xff);
+  const TraverseLog back = decodeTraverseLog(bytes, "memory");
+  ASSERT_EQ(back.entries.size(), 3u);
+  EXPECT_EQ(back.entries[2].scan.readings[4].kind, RadialKind::kHit);
+  EXPECT_FALSE(back.entries[2].scan.readings[4].floor_edge);
+  EXPECT_EQ(back.entries[2].scan.readings[5].kind, RadialKind::kBeyond);
 }
 
 TEST(TraverseLogTest, SavesAndLoadsAFile) {
@@ -115,7 +138,7 @@ TEST(TraverseLogTest, RejectsOtherVersions) {
   std::string bytes = encodeTraverseLog(sampleLog());
   bytes[8] = 7;
   EXPECT_EQ(errorOf(bytes),
-            "run/traverse_jose.traverse: traverse log version 7 (this build reads 1)");
+            "run/traverse_jose.traverse: traverse log version 7 (this build reads 1 to 2)");
 }
 
 TEST(TraverseLogTest, SegmentOfCommands) {

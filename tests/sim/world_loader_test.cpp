@@ -88,7 +88,8 @@ TEST(WorldLoaderTest, MissionSettingsOfABuildingAreReadAndChecked) {
       "mission: {mode: explore, first_sortie_budget_m: 10, safety_distance: 0.45, "
       "slow_distance: 1, fringe_clearance: 0.3, doorway_width: 1.1, goal_clearance: 0.4, "
       "retry_frontiers: true, "
-      "floor_edge_depth: 1.5, shaped_closures: true, bump_away: true, visited_radius: 0.09, "
+      "floor_edge_depth: 1.5, beyond_support: 3, shaped_closures: true, bump_away: true, "
+      "visited_radius: 0.09, "
       "calibrate_distance_scale: false, stereo_distance_scale: true, passage_width: 1.2, "
       "odometry_distance_scale: 0.012, "
       "sortie_budget_m: 30, "
@@ -106,6 +107,7 @@ TEST(WorldLoaderTest, MissionSettingsOfABuildingAreReadAndChecked) {
   EXPECT_EQ(w.exploration.goal_clearance, 0.4);
   EXPECT_EQ(w.exploration.retry_frontiers, true);
   EXPECT_EQ(w.exploration.floor_edge_depth, 1.5);
+  EXPECT_EQ(w.exploration.beyond_support, 3);
   EXPECT_EQ(w.exploration.shaped_closures, true);
   EXPECT_EQ(w.exploration.bump_away, true);
   EXPECT_EQ(w.exploration.visited_radius, 0.09);
@@ -159,6 +161,10 @@ TEST(WorldLoaderTest, MissionSettingsOfABuildingAreReadAndChecked) {
   e = errorOf("mission: {mode: explore, closure_scans: 2.5}\n" + minimal());
   EXPECT_NE(e.find("w.yaml:1:41: mission.closure_scans: expected an integer in [1, 100], "
                    "got '2.5'"),
+            std::string::npos)
+      << e;
+  e = errorOf("mission: {mode: explore, beyond_support: 0}\n" + minimal());
+  EXPECT_NE(e.find("mission.beyond_support: expected an integer in [1, 100], got '0'"),
             std::string::npos)
       << e;
   e = errorOf("mission: {mode: explore, closure_scans: 0}\n" + minimal());
