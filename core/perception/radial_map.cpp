@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "core/stereo/trinocular_matcher.h"
 
@@ -27,6 +29,24 @@ void RadialMapConfig::validate() const {
   if (!(floor_tolerance > 0.0)) bad("floor_tolerance", "a positive number", floor_tolerance);
   if (!(floor_edge_sigma >= 0.0)) bad("floor_edge_sigma", "a number >= 0", floor_edge_sigma);
 }
+
+namespace {
+
+// Sorts `disparities` nearest first and finds the nearest run of at least `min_support`
+// that agree within `tolerance` of its first: (its first index, its length), or (0, 0).
+std::pair<size_t, size_t> nearestAgreeing(std::vector<float>& disparities, double tolerance,
+                                          int min_support) {
+  std::sort(disparities.begin(), disparities.end(), std::greater<float>());
+  for (size_t i = 0; i < disparities.size(); ++i) {
+    size_t support = 0;
+    for (size_t j = i; j < disparities.size() && disparities[i] - disparities[j] <= tolerance; ++j)
+      ++support;
+    if (static_cast<int>(support) >= min_support) return {i, support};
+  }
+  return {0, 0};
+}
+
+}  // namespace
 
 RadialMap buildRadialMap(const cv::Mat& disparity, const RobotDescription& robot,
                          const RadialMapConfig& config, double stamp, const Pose2& odometry) {
@@ -66,32 +86,21 @@ RadialMap buildRadialMap(const cv::Mat& disparity, const RobotDescription& robot
       }
       band.push_back(d);
     }
-    std::sort(band.begin(), band.end(), std::greater<float>());
     // The nearest return that enough pixels of the column agree with.
-    for (size_t i = 0; i < band.size(); ++i) {
-      size_t support = 0;
-      for (size_t j = i; j < band.size() && band[i] - band[j] <= config.support_tolerance; ++j)
-        ++support;
-      if (static_cast<int>(support) < config.min_support) continue;
+    if (const auto [first, support] =
+            nearestAgreeing(band, config.support_tolerance, config.min_support);
+        support > 0) {
       double sum = 0.0;
-      for (size_t j = i; j < i + support; ++j) sum += band[j];
+      for (size_t j = first; j < first + support; ++j) sum += band[j];
       r.disparity = sum / support;
       const double z = fb / r.disparity;
       r.range = z * std::sqrt(1.0 + slope * slope);
       r.sigma = z * z / fb * config.disparity_sigma * std::sqrt(1.0 + slope * slope);
       r.kind = RadialKind::kHit;
-      break;
     }
     // Beyond max_range where beyond_support of the column's far returns agree.
-    std::sort(far.begin(), far.end(), std::greater<float>());
-    bool beyond = false;
-    for (size_t i = 0; i < far.size() && !beyond; ++i) {
-      size_t support = 0;
-      for (size_t j = i; j < far.size() && far[i] - far[j] <= config.support_tolerance; ++j)
-        ++support;
-      beyond = static_cast<int>(support) >= config.beyond_support;
-    }
-    if (r.kind == RadialKind::kNone && beyond) {
+    if (r.kind == RadialKind::kNone &&
+        nearestAgreeing(far, config.support_tolerance, config.beyond_support).second > 0) {
       r.kind = RadialKind::kBeyond;
       r.range = config.max_range;
     }
