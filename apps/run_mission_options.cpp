@@ -89,6 +89,11 @@ void addMissionSettingOptions(CLI::App& cmd, RunOptions& run) {
           "nearer together than this (a door), a robot waits while a teammate nearer to it "
           "goes through (0: off) [default: the world's, else 0]")
       ->check(CLI::Range(0.0, 5.0));
+  setting(cmd, "--max-linear-accel", run.max_linear_accel,
+          "With --explore: m/s^2; the mission speeds up no faster than this (the wheels slip "
+          "where the floor grips less than the base's acceleration needs; 0: as the base does) "
+          "[default: the world's, else 0]")
+      ->check(CLI::Range(0.0, 10.0));
   setting(cmd, "--visited-radius", run.visited_radius,
           "With --explore: m either side of the path driven kept free in planning (0: the "
           "robot's radius) [default: the world's, else 0]")

@@ -158,6 +158,8 @@ RunResult runWorld(const RunOptions& opt) {
           pick(opt.retry_frontiers, we.retry_frontiers, mission.retry_frontiers);
       mission.bump_away = pick(opt.bump_away, we.bump_away, mission.bump_away);
       mission.visited_radius = pick(opt.visited_radius, we.visited_radius, mission.visited_radius);
+      mission.max_linear_accel =
+          pick(opt.max_linear_accel, we.max_linear_accel, mission.max_linear_accel);
       mission.recent_hits_s = pick(opt.recent_hits_s, we.recent_hits_s, mission.recent_hits_s);
       mission.passage_width = pick(opt.passage_width, we.passage_width, mission.passage_width);
       mission.planner.preferred_margin =
@@ -195,7 +197,8 @@ RunResult runWorld(const RunOptions& opt) {
                opt.cooperation.manhattan_sigma_rad * 180.0 / M_PI),
           pick(opt.wall_heading_gain, we.wall_heading_gain, 0.0),
           pick(opt.closure_scans, we.closure_scans, opt.cooperation.closure_scans),
-          mission.frontiers.look_again_gain};
+          mission.frontiers.look_again_gain,
+          mission.max_linear_accel};
       WallHeadingConfig headings;
       headings.gain = settings->wall_heading_gain;
       r.headings = WallHeadingTracker(headings);

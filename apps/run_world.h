@@ -60,6 +60,7 @@ struct RunOptions {
   std::optional<bool> closure_decided_points;   // AlignmentConfig::decided_points_only (same)
   std::optional<bool> bump_away;                // MissionConfig::bump_away
   std::optional<double> visited_radius;         // m: MissionConfig::visited_radius (0: radius)
+  std::optional<double> max_linear_accel;       // m/s^2: MissionConfig::max_linear_accel (0: off)
   std::optional<double> recent_hits_s;          // s: MissionConfig::recent_hits_s (0: off)
   std::optional<double> passage_width;          // m: MissionConfig::passage_width (0: off)
   double sortie_budget_s = 400.0;               // s: a robot stuck (wheels slipping) goes home too
@@ -244,6 +245,7 @@ struct RunResult {
     double wall_heading_gain = 0.0;
     int closure_scans = 0;
     int look_again_gain = 0;
+    double max_linear_accel = 0.0;
   };
   std::optional<MissionSettings> mission_settings;  // with --explore
   std::vector<TimelineSample> timeline;

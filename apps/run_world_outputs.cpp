@@ -114,7 +114,7 @@ void writeOutputs(const RunOptions& opt, const sim::World& world, const RunResul
     j.value("preferred_margin", m->preferred_margin).value("closures", m->closures);
     j.value("post_gate_m", m->post_gate_m).value("manhattan_sigma_deg", m->manhattan_sigma_deg);
     j.value("wall_heading_gain", m->wall_heading_gain).value("closure_scans", m->closure_scans);
-    j.value("look_again_gain", m->look_again_gain);
+    j.value("look_again_gain", m->look_again_gain).value("max_linear_accel", m->max_linear_accel);
     j.endObject();
   }
   j.value("sim_time_s", result.sim_time_s).value("wall_time_s", result.wall_time_s);

@@ -46,6 +46,8 @@ void MissionConfig::validate() const {
       throw std::invalid_argument(std::string("mission config: field '") + field + "': expected " +
                                   expected + ", got " + std::to_string(v));
   };
+  require("max_linear_accel", max_linear_accel >= 0.0, "a number >= 0 (0: the base's)",
+          max_linear_accel);
   require("slow_distance", slow_distance >= 0.0, "a number >= 0 (0: off)", slow_distance);
   require("slow_fraction", slow_fraction > 0.0 && slow_fraction <= 1.0, "a number in (0, 1]",
           slow_fraction);
@@ -339,6 +341,17 @@ void MissionAgent::returnAgain(const Pose2& home) {
 }
 
 MotionCommand MissionAgent::update(double now, const Pose2& odometry, const OccupancyGrid& map,
+                                   const RadialMap* latest, bool bumped,
+                                   std::optional<double> bump_bearing) {
+  const MotionCommand decided = decide(now, odometry, map, latest, bumped, bump_bearing);
+  const MotionCommand cmd = limitSpeedUp(decided, sent_linear_, config_.max_linear_accel,
+                                         sent_at_ < 0.0 ? 0.0 : now - sent_at_);
+  sent_linear_ = cmd.kind == MotionCommand::Kind::kVelocity ? cmd.linear : 0.0;
+  sent_at_ = now;
+  return cmd;
+}
+
+MotionCommand MissionAgent::decide(double now, const Pose2& odometry, const OccupancyGrid& map,
                                    const RadialMap* latest, bool bumped,
                                    std::optional<double> bump_bearing) {
   if (start_time_ < 0.0) {

@@ -61,6 +61,12 @@ struct MissionConfig {
   // rooms; a building whose corridors a sortie cannot reach in one go wants it on).
   bool retry_frontiers = false;
   double replan_period_s = 4.0;  // s between checks of the path against the growing map
+  // m/s^2: the mission speeds up no faster than this (limitSpeedUp); slowing down and
+  // stopping are left to the base's own limit. 0: as fast as the base does. Where the floor
+  // grips less than the base's acceleration needs (polished tiles, mu 0.05, hold 0.49 m/s^2
+  // against the B-14's 1 m/s^2) the wheels spin as the robot starts, and the encoders count
+  // distance it never made.
+  double max_linear_accel = 0.0;
   // m from the cameras: an obstacle this close ahead stops the robot. The stereo sees
   // nothing nearer than 0.26 m (32 disparities, 8 px m of focal length times baseline), and a
   // robot at 0.4 m/s moves 0.13 m between frames: 0.30 m leaves a narrow band (0.45 m with
@@ -247,6 +253,9 @@ class MissionAgent {
   bool obstacleAhead(const RadialMap& scan) const;
   // The command with its forward speed capped by the nearest obstacle ahead (slow_distance).
   MotionCommand slowed(MotionCommand cmd) const;
+  // update's command before max_linear_accel limits its speeding up.
+  MotionCommand decide(double now, const Pose2& odometry, const OccupancyGrid& map,
+                       const RadialMap* latest, bool bumped, std::optional<double> bump_bearing);
   double nearest_ahead_ = 1e9;  // m: the nearest hit ahead in the latest radial map
   void chooseGoal(double now, const Pose2& odometry, const OccupancyGrid& map);
   // The free cell nearest the robot within escape_radius, if any.
@@ -311,6 +320,8 @@ class MissionAgent {
   bool lost_ = false;
   std::string last_event_;
   MotionCommand last_command_;
+  double sent_linear_ = 0.0;     // m/s: the linear speed of the last command update returned
+  double sent_at_ = -1.0;        // s: when (negative: none yet)
   GridU8 visited_;               // cells the robot's body has covered: free, seen or not
   GridU8 trail_;                 // this sortie's: see trail_after_waits
   double backoff_speed_ = -0.1;  // m/s while backing off from a bump

@@ -20,6 +20,14 @@ void RouteConfig::validate() const {
   if (!(heading_gain > 0.0)) bad("heading_gain", heading_gain);
 }
 
+MotionCommand limitSpeedUp(MotionCommand cmd, double previous, double accel, double dt) {
+  if (cmd.kind != MotionCommand::Kind::kVelocity || accel <= 0.0) return cmd;
+  const double from = cmd.linear * previous > 0.0 ? std::abs(previous) : 0.0;
+  const double limit = from + accel * std::max(dt, 0.0);
+  if (std::abs(cmd.linear) > limit) cmd.linear = std::copysign(limit, cmd.linear);
+  return cmd;
+}
+
 Waypoint parseWaypoint(const YamlField& f) {
   Waypoint wp;
   if (f.isSequence()) {

@@ -34,6 +34,12 @@ struct RouteConfig {
   void validate() const;            // throws std::invalid_argument naming the field
 };
 
+// `cmd` with its linear speed raised from `previous` (m/s, the last command's) by at most
+// accel * dt (m/s^2, s); a command the other way starts from a standstill. Slowing down and
+// stopping are not limited (a stop is a stop). Turns and straight segments, and accel 0, pass
+// as they are.
+MotionCommand limitSpeedUp(MotionCommand cmd, double previous, double accel, double dt);
+
 // A waypoint from YAML: `[x, y]` or
 // `{at: [x, y], within: m, face_deg: h, wait: s, spin: true, spin_rate_deg: d}`;
 // ConfigError naming the file, line and field otherwise.

@@ -194,6 +194,7 @@ struct World {
     std::optional<bool> shaped_closures;           // CooperationConfig::closure_shape
     std::optional<bool> bump_away;                 // MissionConfig::bump_away
     std::optional<double> visited_radius;          // m: MissionConfig::visited_radius
+    std::optional<double> max_linear_accel;        // m/s^2: MissionConfig::max_linear_accel
     std::optional<double> recent_hits_s;           // s: MissionConfig::recent_hits_s
     std::optional<bool> calibrate_distance_scale;  // OdometryCalibration's distance scale
     std::optional<bool> stereo_distance_scale;     // that scale from stereo (stereo_scale.h)

@@ -230,6 +230,7 @@ World parseWorld(const std::string& text, const std::string& file) {
                           "shaped_closures",
                           "bump_away",
                           "visited_radius",
+                          "max_linear_accel",
                           "calibrate_distance_scale",
                           "stereo_distance_scale",
                           "odometry_distance_scale",
@@ -272,6 +273,7 @@ World parseWorld(const std::string& text, const std::string& file) {
              e.odometry_distance_scale);
       metres("visited_radius", 0.0, 1.0, "metres in [0, 1] (0: the robot's radius)",
              e.visited_radius);
+      metres("max_linear_accel", 0.0, 10.0, "m/s^2 in [0, 10] (0: the base's)", e.max_linear_accel);
       if (mission->has("retry_frontiers"))
         e.retry_frontiers = (*mission)["retry_frontiers"].asBool();
       if (mission->has("shaped_closures"))

@@ -6,6 +6,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -294,6 +295,48 @@ TEST(MissionTest, SlowsDownForWhatIsNearAhead) {
   EXPECT_LE(slow_max, 0.2 + 1e-9);
   EXPECT_GT(free_max, 0.3);
   c.slow_fraction = 0.0;
+  EXPECT_THROW(c.validate(), std::invalid_argument);
+}
+
+TEST(MissionTest, SpeedsUpNoFasterThanItsAccelerationLimitAndStopsAtOnce) {
+  // Exploring open ground at 0.4 m/s; at 25 s something appears 0.2 m ahead (inside
+  // safety_distance): the robot stops in one update, however gently it speeds up.
+  auto run = [](double accel) {
+    const Pose2 home(2.0, 3.0, 0.0);
+    const OccupancyGrid map = lookedAround(Pose2(1.0, 3.0, 0.0));
+    MissionConfig c;
+    c.look_wait_s = 0.2;
+    c.look_turn_rate = 3.0;
+    c.planner.seed = 4;
+    c.max_linear_accel = accel;
+    MissionAgent mission(home, c);
+    Pose2 pose = home;
+    const double dt = 0.05;
+    double previous = 0.0, steepest = 0.0, fastest = 0.0, before_stop = 0.0, at_stop = -1.0;
+    for (int step = 0; step < 600; ++step) {
+      const double t = step * dt;
+      const bool blocked = t >= 25.0;
+      const RadialMap scan = aheadAt(blocked ? std::optional<double>(0.2) : std::nullopt);
+      const MotionCommand cmd =
+          mission.update(t, pose, map, step % 7 == 0 || blocked ? &scan : nullptr);
+      steepest = std::max(steepest, (cmd.linear - previous) / dt);
+      fastest = std::max(fastest, cmd.linear);
+      if (!blocked) before_stop = cmd.linear;
+      if (blocked && at_stop < 0.0) at_stop = cmd.linear;
+      previous = cmd.linear;
+      pose = pose * Pose2(cmd.linear * dt, 0.0, cmd.angular * dt);
+    }
+    return std::make_tuple(steepest, fastest, before_stop, at_stop);
+  };
+  const auto [steepest, fastest, before_stop, at_stop] = run(0.4);
+  EXPECT_LE(steepest, 0.4 + 1e-9);
+  EXPECT_NEAR(fastest, RouteConfig{}.linear_speed, 1e-9);  // it still gets to its cruise
+  EXPECT_GT(before_stop, 0.2);
+  EXPECT_EQ(at_stop, 0.0);
+  // Without the limit the commands jump to cruise (the base's own profile smooths them).
+  EXPECT_GT(std::get<0>(run(0.0)), 1.0);
+  MissionConfig c;
+  c.max_linear_accel = -0.1;
   EXPECT_THROW(c.validate(), std::invalid_argument);
 }
 

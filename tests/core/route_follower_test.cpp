@@ -103,6 +103,19 @@ TEST(RouteFollowerTest, FacesTheGivenHeadingThenWaitsThenSpins) {
   EXPECT_NEAR(wrapAngle(heading_when_still - -2.5), 0.0, RouteConfig{}.face_tolerance + 0.002);
 }
 
+TEST(RouteFollowerTest, SpeedingUpIsLimitedAndSlowingDownIsNot) {
+  const MotionCommand go{0.4, 0.2};
+  EXPECT_NEAR(limitSpeedUp(go, 0.0, 0.4, 0.05).linear, 0.02, 1e-12);       // from a standstill
+  EXPECT_NEAR(limitSpeedUp(go, 0.3, 0.4, 0.05).linear, 0.32, 1e-12);       // on from 0.3 m/s
+  EXPECT_DOUBLE_EQ(limitSpeedUp(go, 0.3, 0.4, 0.05).angular, 0.2);         // turning is not
+  EXPECT_DOUBLE_EQ(limitSpeedUp(go, 0.39, 0.4, 0.05).linear, 0.4);         // within reach
+  EXPECT_DOUBLE_EQ(limitSpeedUp({0.1, 0.0}, 0.4, 0.4, 0.05).linear, 0.1);  // slowing down
+  EXPECT_DOUBLE_EQ(limitSpeedUp(MotionCommand::stop(), 0.4, 0.4, 0.05).linear, 0.0);
+  EXPECT_NEAR(limitSpeedUp({-0.1, 0.0}, 0.4, 0.4, 0.05).linear, -0.02, 1e-12);  // reversing
+  EXPECT_DOUBLE_EQ(limitSpeedUp(go, 0.0, 0.0, 0.05).linear, 0.4);               // off
+  EXPECT_EQ(limitSpeedUp(MotionCommand::straight(2.0), 0.0, 0.4, 0.05).amount, 2.0);
+}
+
 TEST(RouteFollowerTest, EmptyRouteStops) {
   RouteFollower f({}, RouteConfig{});
   EXPECT_TRUE(f.done());

@@ -89,7 +89,7 @@ TEST(WorldLoaderTest, MissionSettingsOfABuildingAreReadAndChecked) {
       "slow_distance: 1, fringe_clearance: 0.3, doorway_width: 1.1, goal_clearance: 0.4, "
       "retry_frontiers: true, "
       "floor_edge_depth: 1.5, beyond_support: 3, shaped_closures: true, bump_away: true, "
-      "visited_radius: 0.09, "
+      "visited_radius: 0.09, max_linear_accel: 0.3, "
       "calibrate_distance_scale: false, stereo_distance_scale: true, passage_width: 1.2, "
       "odometry_distance_scale: 0.012, "
       "sortie_budget_m: 30, "
@@ -111,6 +111,7 @@ TEST(WorldLoaderTest, MissionSettingsOfABuildingAreReadAndChecked) {
   EXPECT_EQ(w.exploration.shaped_closures, true);
   EXPECT_EQ(w.exploration.bump_away, true);
   EXPECT_EQ(w.exploration.visited_radius, 0.09);
+  EXPECT_EQ(w.exploration.max_linear_accel, 0.3);
   EXPECT_EQ(w.exploration.calibrate_distance_scale, false);
   EXPECT_EQ(w.exploration.stereo_distance_scale, true);
   EXPECT_EQ(w.exploration.odometry_distance_scale, 0.012);
@@ -132,6 +133,11 @@ TEST(WorldLoaderTest, MissionSettingsOfABuildingAreReadAndChecked) {
   EXPECT_TRUE(building.exploration.retry_frontiers.value_or(false));
   std::string e = errorOf("mission: {mode: explore, safety_distance: -1}\n" + minimal());
   EXPECT_NE(e.find("w.yaml:1:43: mission.safety_distance: expected metres in [0.05, 5], got '-1'"),
+            std::string::npos)
+      << e;
+  e = errorOf("mission: {mode: explore, max_linear_accel: -0.3}\n" + minimal());
+  EXPECT_NE(e.find("mission.max_linear_accel: expected m/s^2 in [0, 10] (0: the base's), got "
+                   "'-0.3'"),
             std::string::npos)
       << e;
   e = errorOf("mission: {mode: explore, visited_radius: 2}\n" + minimal());
