@@ -213,13 +213,20 @@ RunResult runWorld(const RunOptions& opt) {
         cooperation.post_gate_m = settings->post_gate_m;
         cooperation.manhattan_sigma_rad = settings->manhattan_sigma_deg * M_PI / 180.0;
         cooperation.closure_scans = settings->closure_scans;
+        // A distance scale calibrated beforehand (neither learnt from the sorties'
+        // corrections nor measured by the cameras as the mission goes) is held by each
+        // sortie's correction: the home-base fix cannot see it. (With the cameras' scale, one
+        // mission's figure spreads 0.6 points, and the corrections still fit their own.)
+        const bool scale_from_sorties =
+            settings->calibrate_distance_scale && !settings->stereo_distance_scale;
+        cooperation.correction.fit_distance_scale =
+            settings->calibrate_distance_scale || settings->stereo_distance_scale;
         r.coop = std::make_unique<HomeBaseCooperation>(
             spec.name, nominalHomeBase(world), world.home_base.arm_length, &*live, cooperation);
         r.calibrate = opt.calibrate_odometry;
         // With the scale from stereo, the sorties' corrections do not also move it.
         r.stereo_scale = settings->stereo_distance_scale;
-        r.calibration = OdometryCalibration(settings->calibrate_distance_scale &&
-                                            !settings->stereo_distance_scale);
+        r.calibration = OdometryCalibration(scale_from_sorties);
         r.calibration.setDistanceScale(settings->odometry_distance_scale);
         r.sortie_scale = r.calibration.bias().distance_scale;
       }

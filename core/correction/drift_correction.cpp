@@ -422,6 +422,7 @@ CorrectionResult correctTraverse(const TraverseLog& log, const PoseObservation& 
       }
       problem.AddResidualBlock(new ceres::AutoDiffCostFunction<BiasPrior, 3, 3>(new BiasPrior(m)),
                                nullptr, bias);
+      if (!config.fit_distance_scale) problem.SetManifold(bias, new ceres::SubsetManifold(3, {2}));
       ceres::Solver::Options options = solverOptions(config.max_iterations);
       options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
       ceres::Solver::Summary summary;

