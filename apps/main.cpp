@@ -1,28 +1,33 @@
 // coopmap: the command-line program.
 #include <cstdio>
 #include <exception>
+#include <filesystem>
+#include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <CLI/App.hpp>
 #include <CLI/Config.hpp>
 #include <CLI/Formatter.hpp>
 
-#include "apps/calibrate_command.h"
-#include "apps/carmen_command.h"
-#include "apps/corners_command.h"
-#include "apps/drift_command.h"
-#include "apps/odometry_fit_command.h"
-#include "apps/remap_command.h"
-#include "apps/replay_command.h"
-#include "apps/robot_command.h"
-#include "apps/run_mission_options.h"
-#include "apps/run_world.h"
-#include "apps/stereo_eval_command.h"
-#include "apps/stereo_scale_command.h"
-#include "apps/traverse_command.h"
+#include "core/agent/agent_settings.h"
 #include "core/io/json_writer.h"
+#include "core/io/robot_outputs.h"
 #include "core/io/yaml_reader.h"
+#include "core/landmarks/corner_report.h"
+#include "robots/b14/robot_mission.h"
+#include "robots/camera/calibrate_rig.h"
+#include "robots/carmen/carmen_mapping.h"
+#include "sim/runner/drift_bench.h"
+#include "sim/runner/odometry_fit.h"
+#include "sim/runner/remap.h"
+#include "sim/runner/replay_run.h"
+#include "sim/runner/stereo_evaluation.h"
+#include "sim/runner/stereo_scale_logs.h"
+#include "sim/runner/traverse_tool.h"
+#include "sim/runner/world_run.h"
+#include "sim/runner/world_run_outputs.h"
 #include "sim/world/world.h"
 
 int main(int argc, char** argv) {
@@ -32,6 +37,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
 
   coopmap::RunOptions run;
+  std::string run_out;
   std::string odometry;
   int robots = 0;
   auto* cmd_run = app.add_subcommand(
@@ -43,7 +49,7 @@ int main(int argc, char** argv) {
   cmd_run->add_option("world", run.world_file, "World file (YAML), e.g. worlds/lab.yaml")
       ->required()
       ->check(CLI::ExistingFile);
-  cmd_run->add_option("--out", run.out_dir, "Output folder (created if missing)")->required();
+  cmd_run->add_option("--out", run_out, "Output folder (created if missing)")->required();
   cmd_run->add_option("--seed", run.seed, "Seed for every random choice of the run")
       ->capture_default_str();
   cmd_run->add_option("--duration", run.duration, "Simulated seconds at most")
@@ -54,11 +60,6 @@ int main(int argc, char** argv) {
   cmd_run->add_option("--odometry", odometry,
                       "Override the robot file's odometry: 'perfect', 'drifting' (its default "
                       "preset), or the name of a preset in the robot file (e.g. utias_robot1)");
-  double sensing_rate = 0.0;
-  cmd_run
-      ->add_option("--sensing-rate", sensing_rate,
-                   "Sensing rate (Hz), overriding the world's (the paper: 3)")
-      ->check(CLI::Range(0.1, 60.0));
   cmd_run->add_flag("--steer-by-truth", run.steer_by_truth,
                     "Follow the route by the true pose, as a person driving it would: the path "
                     "is the intended one and odometry only records it (drift experiments)");
@@ -77,12 +78,25 @@ int main(int argc, char** argv) {
                  "Follow the scripted routes of the world file (the default unless the world "
                  "says 'mission: explore')")
       ->excludes("--explore");
-  coopmap::addMissionSettingOptions(*cmd_run, run);
-  cmd_run
-      ->add_option("--sorties", run.max_sorties,
-                   "With --explore: sorties at most (1: explore once, share after the run)")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+  // The agents' settings, each as --kebab-case-name VALUE (core/agent/agent_settings.h):
+  // over the world's `mission:` block, over coopmap's defaults.
+  std::vector<std::pair<std::string, std::string>> setting_values;
+  for (const coopmap::SettingInfo& info : coopmap::agentSettingInfos()) {
+    const std::string name = info.name;
+    std::string help = info.help;
+    if (*info.unit) help += " [" + std::string(info.unit) + "]";
+    coopmap::AgentSettings defaults;
+    defaults.visit([&](const coopmap::SettingInfo& i, const auto& value) {
+      if (name != i.name) return;
+      std::ostringstream v;
+      v << std::boolalpha << value;
+      help += " (default " + v.str() + ")";
+    });
+    cmd_run->add_option_function<std::string>(
+        coopmap::settingFlag(name),
+        [&setting_values, name](const std::string& v) { setting_values.emplace_back(name, v); },
+        help);
+  }
   cmd_run
       ->add_option("--published-band", run.published_band,
                    "The shared map published (maps, metrics): each return drawn over this "
@@ -90,33 +104,6 @@ int main(int argc, char** argv) {
                    "they import: 1)")
       ->capture_default_str()
       ->check(CLI::Range(0.05, 2.0));
-  bool tracking = false;
-  cmd_run->add_flag("--tracking", tracking,
-                    "With --explore: between home-base fixes, track the estimate against the "
-                    "shared map imported at home (default: steer by calibrated odometry)");
-  bool no_calibration = false;
-  cmd_run->add_flag("--no-calibration", no_calibration,
-                    "With --explore: drive every sortie on raw odometry (default: odometry "
-                    "calibrated online with the systematic errors the home-base fixes found)");
-  cmd_run
-      ->add_option("--teammate-mask", run.teammate_mask_m,
-                   "With several robots: metres around where a teammate reports itself within "
-                   "which returns are the teammate and are not mapped (0: mapped like the world)")
-      ->capture_default_str()
-      ->check(CLI::Range(0.0, 2.0));
-  std::string closures;
-  auto* closures_option =
-      cmd_run
-          ->add_option("--closures", closures,
-                       "With --explore: loop closures of each sortie's correction: stretches "
-                       "aligned to the shared map, to the sortie's other half, both, or none "
-                       "[default: the world's, else self]")
-          ->check(CLI::IsMember({"both", "shared", "self", "none"}));
-  bool no_coordination = false;
-  cmd_run->add_flag("--no-coordination", no_coordination,
-                    "With --explore and several robots: each explores as if alone (default: "
-                    "frontiers near teammates' goals are worth less, and a robot whose own part "
-                    "is explored goes home to share it)");
   bool quiet = false;
   cmd_run->add_flag("--quiet", quiet, "No progress bar");
 
@@ -398,16 +385,23 @@ int main(int argc, char** argv) {
   coopmap::RobotCommandOptions robot_options;
   auto* cmd_robot = app.add_subcommand(
       "robot",
-      "Drive a real B-14 base over its rFLEX controller (serial port) on the wall clock: the "
-      "route follower of the config file runs through the robot interface until the route is "
-      "done or Ctrl-C (then a safe stop). The config names the serial device and baud, the "
-      "robot model file, and the route.");
+      "Run a real B-14 (its rFLEX base over a serial port, its trinocular cameras) on the wall "
+      "clock. With a mission (the config's `mission:` and `cameras:`), the robot's agent runs "
+      "as in simulation: it looks at the home base to find where it stands, explores (mode "
+      "explore) or follows a route (mode route) in sorties, and back home localizes, corrects "
+      "its traverse, posts it to the shared map and imports it, until it is done or Ctrl-C "
+      "(then a safe stop); --out receives its map, traverse log and odometry. Without one, the "
+      "base alone follows the config's route in the odometry frame. The config names the "
+      "serial device and baud, the robot model file, and the mission or the route.");
   cmd_robot->add_option("config", robot_options.config, "Robot config file (YAML)")
       ->required()
       ->check(CLI::ExistingFile);
   cmd_robot->add_flag("--dry-run", robot_options.dry_run,
                       "Check the config and that the controller answers; move nothing");
   cmd_robot->add_flag("--quiet", robot_options.quiet, "No progress lines");
+  cmd_robot->add_option("--out", robot_options.out_dir,
+                        "With a mission: folder for the robot's map (map_<robot>.pgm/.yaml/.png), "
+                        "traverse log and odometry (created if missing)");
 
   coopmap::CalibrateOptions calibrate;
   auto* cmd_calibrate = app.add_subcommand(
@@ -436,7 +430,18 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
 
   try {
-    if (cmd_robot->parsed()) return coopmap::runRobotCommand(robot_options);
+    if (cmd_robot->parsed()) {
+      coopmap::RobotMissionResult mission;
+      const int code = coopmap::runRobotCommand(robot_options, stdout, &mission);
+      if (!robot_options.out_dir.empty() && mission.grid) {
+        std::filesystem::create_directories(robot_options.out_dir);
+        coopmap::writeRobotOutputs(robot_options.out_dir,
+                                   {mission.name, "", &*mission.grid, nullptr, &mission.odometry,
+                                    nullptr, &mission.traverse, mission.odometry_in_map});
+        std::printf("outputs in %s\n", robot_options.out_dir.c_str());
+      }
+      return code;
+    }
     if (cmd_calibrate->parsed()) std::printf("%s", coopmap::runCalibrate(calibrate).report.c_str());
     if (cmd_traverse->parsed()) coopmap::printTraverseSummary(trav, coopmap::runTraverse(trav));
     if (cmd_remap->parsed()) {
@@ -544,18 +549,20 @@ int main(int argc, char** argv) {
                   r.wall_time_s, replay.out_dir.c_str());
     }
     if (cmd_run->parsed()) {
-      run.explore = explore_flag ||
-                    (!routes_flag && coopmap::sim::loadWorld(run.world_file).mission == "explore");
-      run.track_shared_map = tracking;
-      run.calibrate_odometry = !no_calibration;
-      run.coordinate = !no_coordination;
-      if (closures_option->count() > 0) run.closures = closures;
+      if (explore_flag) run.explore = true;
+      if (routes_flag) run.explore = false;
+      // Checked before the run, so that a bad value costs no simulation.
+      coopmap::AgentSettings check;
+      for (const auto& [name, value] : setting_values) coopmap::setAgentSetting(check, name, value);
+      run.settings = [&setting_values](coopmap::AgentSettings& s) {
+        for (const auto& [name, value] : setting_values) coopmap::setAgentSetting(s, name, value);
+      };
       if (robots > 0) run.robots = robots;
       if (!odometry.empty()) run.odometry = odometry;
-      if (sensing_rate > 0.0) run.sensing_rate = sensing_rate;
       run.progress = !quiet;
       run.share_maps = true;
       const coopmap::RunResult r = coopmap::runWorld(run);
+      coopmap::writeRunOutputs(run_out, r);
       for (const auto& robot : r.robots)
         std::printf(
             "%s: path %.1f m, %d frames, collisions %d, wall_recall %.3f, "
@@ -573,15 +580,35 @@ int main(int argc, char** argv) {
             r.shared_map.naive.wall_recall, r.shared_map.naive.false_occupied_rate,
             r.shared_map.naive.coverage, r.shared_map.imported.wall_recall,
             r.shared_map.imported.false_occupied_rate);
-      for (const auto& robot : r.robots)
-        for (const std::string& line : robot.sortie_log)
+      for (const auto& robot : r.robots) {
+        for (const std::string& line : robot.log)
           std::printf("%s %s\n", robot.name.c_str(), line.c_str());
+        std::string errors;
+        char e[96];
+        if (robot.start_fix_error) {
+          std::snprintf(e, sizeof e, "start %.1f cm %.2f deg",
+                        100.0 * robot.start_fix_error->error_m, robot.start_fix_error->error_deg);
+          errors += e;
+        }
+        if (robot.placed_error) {
+          std::snprintf(e, sizeof e, "; placed %.1f cm %.2f deg",
+                        100.0 * robot.placed_error->error_m, robot.placed_error->error_deg);
+          errors += e;
+        }
+        for (const coopmap::FixError& f : robot.fix_errors) {
+          std::snprintf(e, sizeof e, "%ssortie %d %.1f cm %.2f deg", errors.empty() ? "" : "; ",
+                        f.sortie, 100.0 * f.error_m, f.error_deg);
+          errors += e;
+        }
+        if (!errors.empty())
+          std::printf("%s fixes against the truth: %s\n", robot.name.c_str(), errors.c_str());
+      }
       if (r.time_to_90_s >= 0.0) std::printf("90 %% coverage after %.0f s\n", r.time_to_90_s);
       std::printf(
           "simulated %.1f s in %.1f s wall (%.1fx real time: physics %.1f s, render "
           "%.1f s, stereo %.1f s, mapping %.1f s); outputs in %s\n",
           r.sim_time_s, r.wall_time_s, r.real_time_factor, r.timing.physics_s, r.timing.render_s,
-          r.timing.stereo_s, r.timing.mapping_s, run.out_dir.c_str());
+          r.timing.stereo_s, r.timing.mapping_s, run_out.c_str());
     }
   } catch (const coopmap::ConfigError& e) {
     std::fprintf(stderr, "coopmap: %s\n", e.what());

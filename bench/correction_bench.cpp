@@ -7,9 +7,9 @@
 #include <memory>
 #include <optional>
 
-#include "apps/run_world.h"
 #include "core/correction/drift_correction.h"
 #include "core/correction/home_return.h"
+#include "sim/runner/world_run.h"
 #include "sim/world/ground_truth.h"
 #include "sim/world/world.h"
 
@@ -36,14 +36,11 @@ Traverse& corridorTraverse() {
     o.odometry = "drifting";
     o.steer_by_truth = true;
     o.duration = 3600;
-    t->log = runWorld(o).robots[0].traverse;
-    t->limits = sim::worldMapLimits(world);
-    const auto& hb = world.home_base;
-    t->arm_length = hb.arm_length;
-    t->home.first.position = hb.corners[0].position;
-    t->home.first.heading = hb.corners[0].heading;
-    t->home.second.position = hb.corners[1].position;
-    t->home.second.heading = hb.corners[1].heading;
+    t->log = runWorld(o).robots[0].traverse;  // in the home base's frame
+    const HomeBaseDesign design;
+    t->limits = sim::worldMapLimits(world, 0.5, sim::mapFrameInWorld(world, design));
+    t->arm_length = design.arm_length;
+    t->home = design.visibleCorners();
     t->reference.emplace(homeBaseReferenceMap(t->log));
     t->observation =
         localizeFromLog(t->log, t->home, t->arm_length, {}, &*t->reference).observation;

@@ -8,8 +8,8 @@
 
 #include <benchmark/benchmark.h>
 
-#include "apps/drift_command.h"
-#include "apps/run_world.h"
+#include "sim/runner/drift_bench.h"
+#include "sim/runner/world_run.h"
 
 namespace coopmap::bench {
 namespace {
@@ -19,7 +19,7 @@ void BM_RealTimeFactorTwoRobots10Hz(benchmark::State& state) {
   o.world_file = std::string(COOPMAP_SOURCE_DIR) + "/worlds/lab.yaml";
   o.seed = 1;
   o.duration = 60.0;
-  o.sensing_rate = 10.0;
+  o.settings = [](AgentSettings& s) { s.sensing_rate = 10.0; };
   RunResult r;
   for (auto _ : state) r = runWorld(o);
   const double wall = r.wall_time_s;

@@ -84,6 +84,12 @@ void CooperationConfig::validate() const {
         "cooperation config: field 'manhattan_sigma_rad': expected a number >= 0 (0: off), got " +
         std::to_string(manhattan_sigma_rad));
   manhattan.validate();
+  if (!(team_frame_max_m > 0.0 && team_frame_max_rad > 0.0 && team_frame_min_points >= 1 &&
+        team_frame_min_inliers >= 0.0 && team_frame_min_inliers <= 1.0))
+    throw std::invalid_argument(
+        "cooperation config: fields 'team_frame_max_m', 'team_frame_max_rad', "
+        "'team_frame_min_points', 'team_frame_min_inliers': expected positive bounds, at least "
+        "one point and a share in [0, 1]");
   if (!(closure_max_sigma_m >= closure_sigma_xy))
     throw std::invalid_argument(
         "cooperation config: field 'closure_max_sigma_m': expected a number >= closure_sigma_xy "
@@ -292,6 +298,43 @@ void HomeBaseCooperation::checkExpected(SortieReport& rep,
   }
 }
 
+void HomeBaseCooperation::joinTeamFrame(const TraverseLog& sortie, const ScanAligner& aligner,
+                                        std::vector<Pose2>& poses, SortieReport& rep) {
+  // The whole corrected sortie against what the teammates have shared: one rigid motion.
+  const PlacedScans all(sortie, poses, 0, poses.size());
+  const AlignmentResult a = aligner.align(all.pointers, Pose2());
+  const Eigen::Vector2d mid = 0.5 * (home_.first.position + home_.second.position);
+  char note[200];
+  if (!a.ok || a.points < config_.team_frame_min_points ||
+      a.inliers < config_.team_frame_min_inliers * a.points ||
+      !movesWithin(a.correction, Pose2(mid.x(), mid.y(), 0.0), config_.team_frame_max_m,
+                   config_.team_frame_max_rad)) {
+    std::snprintf(
+        note, sizeof note, "; kept its own frame (no sure fit to the shared map: %s)",
+        a.ok ? "it would move the home base too far or fits too few points" : a.message.c_str());
+    rep.method += note;
+    return;
+  }
+  const Pose2& T = a.correction;
+  for (Pose2& p : poses) p = T * p;
+  rep.team_frame = T;
+  rep.correction = T * rep.correction;
+  rep.fix = T * rep.fix;
+  for (Corner* c : {&home_.first, &home_.second}) {
+    c->position = T * c->position;
+    c->heading = wrapAngle(c->heading + T.theta);
+  }
+  for (TraverseEntry& e : reference_log_.entries) e.scan.odometry = T * e.scan.odometry;
+  if (reference_) reference_ = homeBaseReferenceMap(reference_log_, config_.home_return);
+  const Pose2 moved = T * Pose2(mid.x(), mid.y(), 0.0);
+  std::snprintf(note, sizeof note,
+                "; joined the team's frame: turned %.2f deg, the home base moved %.1f cm (%d of "
+                "%d points on the shared map)",
+                T.theta * 180.0 / M_PI, 100.0 * (moved.translation() - mid).norm(), a.inliers,
+                a.points);
+  rep.method += note;
+}
+
 SortieReport HomeBaseCooperation::locate(const TraverseLog& sortie,
                                          const std::optional<Eigen::Vector2d>& expected,
                                          size_t look_from) const {
@@ -402,6 +445,8 @@ SortieReport HomeBaseCooperation::endSortie(const TraverseLog& sortie,
       rep.method += closure_note;
     }
   }
+  if (aligner && config_.join_team_frame && !joined_) joinTeamFrame(sortie, *aligner, c.poses, rep);
+  joined_ = true;  // a robot joins with its first post, or keeps its own frame
   if (aligner) {
     const size_t k = std::min(n, static_cast<size_t>(config_.home_check_scans));
     const PlacedScans look(sortie, c.poses, n - k, n);

@@ -111,6 +111,19 @@ struct CooperationConfig {
   // ~900 radial maps, 1-5.6 deg off all along, up to 1.2 m). 3 passes against 1: wall_recall
   // 0.948 -> 0.967, false_occupied_rate 0.0143 -> 0.0138, coverage >= 0.9 in 20 -> 23 runs.
   int manhattan_passes = 3;
+  // Beyond the paper: a robot's map frame is its home base's as its first look placed it, a
+  // few tenths of a degree and a centimetre or two off the design for a look from afar, and
+  // each robot's off in its own way; far from home two robots' walls part by that turn. The
+  // first sortie a robot posts to a shared map that holds its teammates' data is aligned to
+  // it whole (one rigid motion, turning at most team_frame_max_rad and moving the home base
+  // at most team_frame_max_m; at least team_frame_min_points obstacle points, of which
+  // team_frame_min_inliers on the map's obstacles): the robot takes the team's frame, with its
+  // registration and reference of the home base. Off: each robot keeps its own.
+  bool join_team_frame = false;
+  double team_frame_max_m = 0.15;
+  double team_frame_max_rad = 3.0 * M_PI / 180.0;
+  int team_frame_min_points = 500;
+  double team_frame_min_inliers = 0.7;
   void validate() const;  // throws std::invalid_argument naming the field
 
   // The loop closures by name: "none", "self" (within the sortie), "shared" (to the shared
@@ -136,6 +149,9 @@ struct SortieReport {
   double home_agreement = -1.0;  // share of the look's points on the shared map (-1: none)
   double fix_moved_m = 0.0;      // how far the shared map moved the fix (rival check), or 0
   uint64_t map_version = 0;      // of the shared map imported afterwards
+  // The rigid motion that took the robot's map frame into the team's (join_team_frame),
+  // already in `correction` and `fix`; identity unless this sortie joined.
+  Pose2 team_frame;
   // The systematic odometry errors the correction fitted (of the odometry the sortie ran
   // on), and the distance driven: for online odometry calibration.
   OdometryBias bias;
@@ -263,6 +279,12 @@ class HomeBaseCooperation {
   // Not trusted (noted in the method) when the fix is farther than max_disagreement_m from
   // where the robot was expected.
   void checkExpected(SortieReport& rep, const std::optional<Eigen::Vector2d>& expected) const;
+  // Takes the team's frame (CooperationConfig::join_team_frame): aligns the corrected sortie
+  // (`poses`) to the shared map and, when it fits, moves the poses, the report's fix and
+  // correction, and the registration and reference of the home base by the alignment.
+  void joinTeamFrame(const TraverseLog& sortie, const ScanAligner& aligner,
+                     std::vector<Pose2>& poses, SortieReport& rep);
+  bool joined_ = false;  // the team's frame was taken (or the first post found none)
   uint64_t next_post_ = 1;
 };
 

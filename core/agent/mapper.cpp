@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <stdexcept>
 #include <utility>
 
 namespace coopmap {
@@ -39,9 +40,50 @@ const RadialMap& Mapper::process(const TrinocularFrame& frame, MotionSegment seg
   const Pose2 pose = estimate(frame.odometry);
   last_scan_ = buildRadialMap(disparity_, robot_, config_.radial, frame.stamp, pose);
   entry.scan = last_scan_;
+  maskTeammates(entry.scan, pose);
+  raw_odometry_.push_back(frame.odometry);
+  if (!placement_kept_) unmasked_.push_back(last_scan_);
+  grid_.insert(last_scan_, pose);
+  const auto t2 = Clock::now();
+  timing_.stereo_s += std::chrono::duration<double>(t1 - t0).count();
+  timing_.mapping_s += std::chrono::duration<double>(t2 - t1).count();
+  ++timing_.frames;
+  return last_scan_;
+}
+
+void Mapper::keepPlacement() {
+  placement_kept_ = true;
+  unmasked_.clear();
+  unmasked_.shrink_to_fit();
+}
+
+void Mapper::relocate(const Pose2& X_MO) {
+  if (placement_kept_)
+    throw std::logic_error("Mapper::relocate: the placement was kept (keepPlacement)");
+  frame_ = X_MO;
+  framed_ = true;
+  grid_ = OccupancyGrid(grid_.limits(), config_.occupancy);
+  for (size_t i = 0; i < traverse_.entries.size(); ++i) {
+    const Pose2 pose = X_MO * raw_odometry_[i];
+    RadialMap scan = unmasked_[i];
+    scan.odometry = pose;
+    grid_.insert(scan, pose);
+    maskTeammates(scan, pose);
+    traverse_.entries[i].scan = std::move(scan);
+  }
+}
+
+void Mapper::maskLogged(size_t from) {
+  for (size_t i = from; i < traverse_.entries.size(); ++i) {
+    RadialMap& scan = traverse_.entries[i].scan;
+    maskTeammates(scan, scan.odometry);
+  }
+}
+
+void Mapper::maskTeammates(RadialMap& scan, const Pose2& pose) {
   if (teammate_radius_ > 0.0 && !teammates_.empty()) {
-    const Eigen::Vector2d origin = pose * entry.scan.sensor_origin;
-    for (RadialReading& r : entry.scan.readings) {
+    const Eigen::Vector2d origin = pose * scan.sensor_origin;
+    for (RadialReading& r : scan.readings) {
       if (r.kind != RadialKind::kHit) continue;
       const double a = pose.theta + r.bearing;
       const Eigen::Vector2d hit = origin + r.range * Eigen::Vector2d(std::cos(a), std::sin(a));
@@ -61,13 +103,6 @@ const RadialMap& Mapper::process(const TrinocularFrame& frame, MotionSegment seg
       }
     }
   }
-  raw_odometry_.push_back(frame.odometry);
-  grid_.insert(last_scan_, pose);
-  const auto t2 = Clock::now();
-  timing_.stereo_s += std::chrono::duration<double>(t1 - t0).count();
-  timing_.mapping_s += std::chrono::duration<double>(t2 - t1).count();
-  ++timing_.frames;
-  return last_scan_;
 }
 
 }  // namespace coopmap

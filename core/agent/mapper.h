@@ -45,6 +45,16 @@ class Mapper {
   // map frame is the odometry frame at the start). A home-base fix changes it: from then on
   // scans are inserted, and logged, at the corrected estimate.
   void setFrame(const Pose2& X_MO);
+  // Places everything mapped so far in the frame X_MO: the estimate's frame becomes X_MO, each
+  // traverse entry moves to X_MO * its odometry (rawOdometry) and is masked for the teammates
+  // set now, and the grid is built again from the entries. For the looks at the start, which
+  // place the odometry frame in the map frame; until keepPlacement().
+  void relocate(const Pose2& X_MO);
+  // The placement is final: relocate() is no longer allowed (and what it needs is dropped).
+  void keepPlacement();
+  // Masks the logged entries from `from` on for the teammates set now (see setTeammates): a
+  // teammate placed after the robot logged where it stood is left out afterwards.
+  void maskLogged(size_t from);
   const Pose2& frame() const { return frame_; }
   Pose2 estimate(const Pose2& odometry) const { return framed_ ? frame_ * odometry : odometry; }
 
@@ -72,6 +82,8 @@ class Mapper {
 
  private:
   RobotDescription robot_;
+  // Leaves the returns within the teammates' discs out of `scan` (taken at `pose`).
+  void maskTeammates(RadialMap& scan, const Pose2& pose);
   MapperConfig config_;
   TrinocularMatcher matcher_;
   OccupancyGrid grid_;
@@ -81,7 +93,9 @@ class Mapper {
   std::vector<Pose2> raw_odometry_;
   Pose2 frame_;
   bool framed_ = false;
-  RadialMap last_scan_;  // unmasked
+  RadialMap last_scan_;              // unmasked
+  std::vector<RadialMap> unmasked_;  // every entry's scan as seen, for relocate
+  bool placement_kept_ = false;
   std::vector<Eigen::Vector2d> teammates_;
   double teammate_radius_ = 0.0;
   int masked_ = 0;

@@ -87,6 +87,8 @@ const char* toString(MissionPhase p) {
   switch (p) {
     case MissionPhase::kLookAtHome:
       return "look at home";
+    case MissionPhase::kAtStart:
+      return "at start";
     case MissionPhase::kExplore:
       return "explore";
     case MissionPhase::kReturn:
@@ -316,6 +318,47 @@ void MissionAgent::continueAfterFix(double now) {
   last_event_ = "sortie " + std::to_string(sortie_);
 }
 
+void MissionAgent::startFrom(const Pose2& home, double now) {
+  if (phase_ == MissionPhase::kLookAtHome) {  // placed beforehand: explore after the look
+    placed_home_ = home;
+    return;
+  }
+  if (phase_ != MissionPhase::kAtStart) return;
+  home_ = target_ = home;
+  phase_ = MissionPhase::kExplore;
+  sortie_start_ = now;
+  travelled_ = 0.0;
+  // What was kept in the odometry frame is elsewhere in the map frame.
+  bumps_.clear();
+  recent_.clear();
+  visited_ = GridU8{};
+  trail_ = GridU8{};
+  pose_jumped_ = true;
+  has_goal_ = false;
+  follower_.reset();
+  last_event_ = "exploring";
+}
+
+void MissionAgent::moveHome(const Pose2& home) {
+  if (phase_ != MissionPhase::kAtHome) return;
+  home_ = target_ = home;
+}
+
+void MissionAgent::lookFrom(const Waypoint& look, double now) {
+  if (phase_ != MissionPhase::kAtStart) return;
+  phase_ = MissionPhase::kLookAtHome;
+  pose_jumped_ = true;  // the poses given are the map frame's from now on
+  startRoute({look}, now);
+  last_event_ = "driving nearer to the home base to look again";
+}
+
+void MissionAgent::lookAgainAtStart(double now) {
+  if (phase_ != MissionPhase::kAtStart) return;
+  phase_ = MissionPhase::kLookAtHome;
+  startRoute({{home_.translation(), true, config_.look_turn_rate, 0.0}}, now);
+  last_event_ = "no home base found from the start: looking again";
+}
+
 void MissionAgent::finish(const std::string& reason, bool position_known) {
   phase_ = MissionPhase::kDone;
   lost_ = !position_known;
@@ -473,8 +516,15 @@ MotionCommand MissionAgent::decide(double now, const Pose2& odometry, const Occu
     case MissionPhase::kLookAtHome: {
       const MotionCommand cmd = follower_->update(odometry, now);
       if (!follower_->done()) return cmd;
-      phase_ = MissionPhase::kExplore;
       follower_.reset();
+      if (placed_home_) {  // placed beforehand, in the frame it works in: explore now
+        home_ = target_ = *placed_home_;
+        phase_ = MissionPhase::kExplore;
+        last_event_ = "exploring";
+      } else {
+        phase_ = MissionPhase::kAtStart;
+        last_event_ = "looked at the home base from the start";
+      }
       return MotionCommand::stop();
     }
     case MissionPhase::kExplore: {
@@ -588,6 +638,7 @@ MotionCommand MissionAgent::decide(double now, const Pose2& odometry, const Occu
       follower_.reset();
       return last_command_ = MotionCommand::stop();
     }
+    case MissionPhase::kAtStart:
     case MissionPhase::kAtHome:
     case MissionPhase::kDone:
       break;

@@ -1,8 +1,9 @@
 // A robot's mission (section 4 of the paper, autonomous): look at the home base, explore
 // the frontiers of its own map with planned paths, keep itself safe, come home when the
 // budget is spent or nothing reachable is left, and look at the home base again (the data
-// the home-base protocol needs to correct the traverse). Robot-agnostic: it turns odometry,
-// the robot's map and its latest radial map into motion commands, in the odometry frame.
+// the home-base protocol needs to correct the traverse). Robot-agnostic: it turns the pose
+// estimate, the robot's map and its latest radial map into motion commands. Until the first
+// look places the robot in the map frame (startFrom) it works in the odometry frame.
 #pragma once
 
 #include <algorithm>
@@ -170,13 +171,29 @@ struct MissionConfig {
   void validate() const;  // throws std::invalid_argument naming the field
 };
 
-enum class MissionPhase { kLookAtHome, kExplore, kReturn, kLookAgain, kAtHome, kDone };
+// kLookAtHome: the first look, at the start; kAtStart: waiting for the caller to place the
+// robot in the map frame by that look (startFrom, or lookAgainAtStart).
+enum class MissionPhase { kLookAtHome, kAtStart, kExplore, kReturn, kLookAgain, kAtHome, kDone };
 const char* toString(MissionPhase p);
 
 class MissionAgent {
  public:
-  // `home`: the odometry pose at the home base (the start).
+  // `home`: where the first look is taken (the start, odometry frame).
   MissionAgent(const Pose2& home, const MissionConfig& config);
+
+  // In phase kAtStart: the first look placed the robot in the map frame; `home` is its start
+  // there (map frame, as every pose given to update from now on). Explore (phase kExplore).
+  // Called before (phase kLookAtHome: the robot was placed beforehand), it explores as soon
+  // as the look is over.
+  void startFrom(const Pose2& home, double now);
+  // In phase kAtHome: the robot's start in the map frame moved (its frame was aligned to the
+  // team's): the home it comes back to from now on.
+  void moveHome(const Pose2& home);
+  // In phase kAtStart: drive to `look` (the map frame's, as every pose given to update from
+  // now on) and take the look there (phase kLookAtHome, then kAtStart again).
+  void lookFrom(const Waypoint& look, double now);
+  // In phase kAtStart: the look found no home base; turn again where it stands.
+  void lookAgainAtStart(double now);
 
   // The command for now (s), given the odometry pose, the robot's map (odometry frame) and
   // the latest radial map (nullptr if none since the last call), and whether the bumpers
@@ -267,7 +284,8 @@ class MissionAgent {
                                                   const Eigen::Vector2d& to) const;
 
   Pose2 home_;
-  Pose2 target_;  // where "home" is this sortie (home_, or returnAgain's)
+  Pose2 target_;                      // where "home" is this sortie (home_, or returnAgain's)
+  std::optional<Pose2> placed_home_;  // startFrom during the first look
   MissionConfig config_;
   MissionPhase phase_ = MissionPhase::kLookAtHome;
   std::unique_ptr<RouteFollower> follower_;

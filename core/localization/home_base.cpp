@@ -2,8 +2,48 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace coopmap {
+
+std::vector<HomeBaseDesign::Arm> HomeBaseDesign::arms() const {
+  std::vector<Arm> out;
+  for (const Corner* c : {&corners.first, &corners.second})
+    for (double side : {1.0, -1.0}) {
+      const double a = c->heading + side * M_PI / 4.0;
+      Arm arm;
+      arm.center = c->position + 0.5 * arm_length * Eigen::Vector2d(std::cos(a), std::sin(a));
+      arm.half_length = 0.5 * (arm_length + thickness);
+      arm.half_width = 0.5 * thickness;
+      arm.yaw = a;
+      out.push_back(arm);
+    }
+  return out;
+}
+
+HomeBase HomeBaseDesign::visibleCorners() const {
+  HomeBase out = corners;
+  for (Corner* c : {&out.first, &out.second})
+    c->position +=
+        thickness / std::sqrt(2.0) * Eigen::Vector2d(std::cos(c->heading), std::sin(c->heading));
+  return out;
+}
+
+void HomeBaseDesign::validate() const {
+  if (!(arm_length > 0.0 && std::isfinite(arm_length)))
+    throw std::invalid_argument("home base: field 'arm_length': expected a positive length, got " +
+                                std::to_string(arm_length));
+  if (!(thickness > 0.0 && thickness < arm_length))
+    throw std::invalid_argument(
+        "home base: field 'thickness': expected a positive thickness below arm_length, got " +
+        std::to_string(thickness));
+  const double spacing = (corners.second.position - corners.first.position).norm();
+  if (!(spacing > thickness && std::isfinite(spacing)))
+    throw std::invalid_argument(
+        "home base: field 'corners': expected two distinct corners, got them " +
+        std::to_string(spacing) + " m apart");
+}
 
 HomeBaseRegistration registerHomeBase(const CornerDetector& detector, const Eigen::Vector2d& first,
                                       const Eigen::Vector2d& second, double search_radius) {

@@ -20,6 +20,31 @@ struct HomeBase {
   Corner first, second;  // registered at start, map frame
 };
 
+// The home base as designed: two L corners, each of two arms (solid boxes `thickness` thick
+// and `arm_length` long, as in the world files) leaving the corner's vertex at its heading
+// +/- 45 degrees, so the heading points into the L's concave side. The map frame is the home
+// base's: `corners` place the vertices in it (the arms' centre lines meet at a vertex). The
+// defaults are coopmap's standard home base: corners 1.4 m apart, both opening towards -x,
+// where the robots stand; the map frame's origin midway between them, x pointing from the
+// robots to the home base.
+struct HomeBaseDesign {
+  HomeBase corners = {Corner{{0.0, -0.7}, M_PI}, Corner{{0.0, 0.7}, M_PI}};
+  double arm_length = 0.6;  // m
+  double thickness = 0.04;  // m
+
+  // A rectangle of the design, map frame: centre, half sizes along and across, direction.
+  struct Arm {
+    Eigen::Vector2d center{0.0, 0.0};
+    double half_length = 0.0, half_width = 0.0;
+    double yaw = 0.0;
+  };
+  std::vector<Arm> arms() const;  // four: the first corner's two, then the second's
+  // The corners as a robot's grid shows them: where the arms' inner faces meet, thickness /
+  // sqrt(2) from each vertex along its heading. What the corner detector fits.
+  HomeBase visibleCorners() const;
+  void validate() const;  // throws std::invalid_argument naming the field
+};
+
 enum class HomeBaseStatus { kOk, kCornerNotFound, kGeometryMismatch };
 
 struct HomeBaseFix {

@@ -111,6 +111,11 @@ TrinocularCamera::TrinocularCamera(const CameraSources& sources, const RigCalibr
     maps_[c] = rectificationMap(calibration_, rectification_, c);
 }
 
+TrinocularCamera::TrinocularCamera(const CameraSources& sources, const TrinocularRig& rig)
+    : capture_(sources), rectified_sources_(true) {
+  rectification_.rig = rig;
+}
+
 std::optional<TrinocularFrame> TrinocularCamera::capture(double stamp) {
   std::array<cv::Mat, kRigCameras> raw;
   const int index = capture_.frames();
@@ -129,6 +134,18 @@ void TrinocularCamera::rectify(const std::array<cv::Mat, kRigCameras>& raw,
                                TrinocularFrame& frame) const {
   cv::Mat* out[kRigCameras] = {&frame.reference, &frame.horizontal, &frame.vertical};
   cv::Mat grey;
+  if (rectified_sources_) {
+    const CameraIntrinsics& k = rectification_.rig.intrinsics;
+    for (int c = 0; c < kRigCameras; ++c) {
+      if (raw[c].cols != k.width || raw[c].rows != k.height)
+        throw std::runtime_error(
+            std::string(rigCameraName(c)) + " camera ('" + capture_.sources()[c] + "'): image is " +
+            std::to_string(raw[c].cols) + "x" + std::to_string(raw[c].rows) + " px, the rig's is " +
+            std::to_string(k.width) + "x" + std::to_string(k.height));
+      toGrey(raw[c], *out[c]);
+    }
+    return;
+  }
   for (int c = 0; c < kRigCameras; ++c) {
     const CameraCalibration& cam = calibration_.cameras[c];
     if (raw[c].cols != cam.width || raw[c].rows != cam.height)

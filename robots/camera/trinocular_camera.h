@@ -55,6 +55,9 @@ class TrinocularCamera {
   // `calibration` (throws std::invalid_argument for a calibration that cannot be rectified).
   TrinocularCamera(const CameraSources& sources, const RigCalibration& calibration,
                    const RectificationOptions& options = {});
+  // Sources that give rectified images of `rig` already (a camera head that rectifies itself,
+  // as the Triclops does; a recording's images): the frames are those images, grey.
+  TrinocularCamera(const CameraSources& sources, const TrinocularRig& rig);
   TrinocularCamera(const TrinocularCamera&) = delete;
   TrinocularCamera& operator=(const TrinocularCamera&) = delete;
 
@@ -74,6 +77,7 @@ class TrinocularCamera {
 
  private:
   RawTrinocularCapture capture_;
+  bool rectified_sources_ = false;
   RigCalibration calibration_;
   RigRectification rectification_;
   std::array<RectificationMap, kRigCameras> maps_;

@@ -179,6 +179,27 @@ std::vector<RecordedCommand> readCommands(const std::string& path) {
   return commands;
 }
 
+std::vector<RecordedStatus> readStatus(const std::string& path) {
+  CsvReader csv(path, {"stamp", "bumped", "contact_events", "segment_active", "bump_bearing"});
+  std::vector<RecordedStatus> rows;
+  while (csv.next()) {
+    RecordedStatus r;
+    r.stamp = csv.number(0);
+    if (!rows.empty() && !(r.stamp > rows.back().stamp))
+      csv.fail(0, "a time after the previous row's " + formatExact(rows.back().stamp));
+    const int bumped = csv.integer(1), segment = csv.integer(3);
+    if (bumped != 0 && bumped != 1) csv.fail(1, "0 or 1");
+    if (segment != 0 && segment != 1) csv.fail(3, "0 or 1");
+    r.status.bumped = bumped == 1;
+    r.status.contact_events = csv.integer(2);
+    if (r.status.contact_events < 0) csv.fail(2, "a count >= 0");
+    r.status.segment_active = segment == 1;
+    if (!csv.text(4).empty()) r.status.bump_bearing = csv.number(4);
+    rows.push_back(r);
+  }
+  return rows;
+}
+
 RobotDescription parseRobotDescription(const std::string& path) {
   if (!fileExists(path)) throw std::runtime_error(path + ": missing file");
   const YamlField root = YamlField::loadFile(path);
@@ -248,12 +269,16 @@ std::string encodeRecordingInfo(const RecordingInfo& info) {
        formatExact(info.map.origin.x()) + ", " + formatExact(info.map.origin.y()) +
        "], width: " + std::to_string(info.map.width) +
        ", height: " + std::to_string(info.map.height) + "}\n";
+  y += std::string("shared_map: ") + (info.shared_map ? "true" : "false") + "\n";
   y += "robots:\n";
   for (const RecordedRobotInfo& r : info.robots) {
     y += "  - {name: " + JsonWriter::quote(r.name) + ", frames: " + std::to_string(r.frames);
     if (r.start)
       y += ", start: [" + formatExact(r.start->x) + ", " + formatExact(r.start->y) + ", " +
            formatExact(r.start->theta) + "]";
+    if (r.map_in_world)
+      y += ", map_in_world: [" + formatExact(r.map_in_world->x) + ", " +
+           formatExact(r.map_in_world->y) + ", " + formatExact(r.map_in_world->theta) + "]";
     y += "}\n";
   }
   return y;
@@ -291,12 +316,14 @@ RecordingInfo readRecordingInfo(const std::string& dir_in) {
     root["format"].fail("'" + std::string(kRecordingFormat) + "'");
   RecordingInfo info;
   info.version = root["version"].asInt(1, 1000000);
-  if (info.version != kRecordingVersion)
+  if (info.version < kOldestRecordingVersion || info.version > kRecordingVersion)
     root["version"].failMessage("version " + std::to_string(info.version) +
                                 " is not supported (this coopmap reads " + kRecordingFormat +
-                                " version " + std::to_string(kRecordingVersion) + ")");
+                                " versions " + std::to_string(kOldestRecordingVersion) + " to " +
+                                std::to_string(kRecordingVersion) + ")");
   root.allowOnly({"format", "version", "source", "world", "world_file", "seed", "sensing_rate",
-                  "control_rate", "map", "robots"});
+                  "control_rate", "map", "shared_map", "robots"});
+  if (const auto shared = root.get("shared_map")) info.shared_map = shared->asBool();
   info.source = root["source"].asString();
   info.world = root["world"].asString();
   info.world_file = root["world_file"].asString();
@@ -317,7 +344,7 @@ RecordingInfo readRecordingInfo(const std::string& dir_in) {
   const std::vector<YamlField> robots = root["robots"].elements();
   if (robots.empty()) root["robots"].fail("a list of at least one robot");
   for (const YamlField& r : robots) {
-    r.allowOnly({"name", "frames", "start"});
+    r.allowOnly({"name", "frames", "start", "map_in_world"});
     RecordedRobotInfo robot;
     robot.name = r["name"].asString();
     if (!validName(robot.name)) r["name"].fail("a folder name (letters, digits, '_', '-', '.')");
@@ -325,6 +352,10 @@ RecordingInfo readRecordingInfo(const std::string& dir_in) {
     if (const auto start = r.get("start")) {
       const Eigen::Vector3d s = start->asVector3();
       robot.start = Pose2(s.x(), s.y(), s.z());
+    }
+    if (const auto frame = r.get("map_in_world")) {
+      const Eigen::Vector3d s = frame->asVector3();
+      robot.map_in_world = Pose2(s.x(), s.y(), s.z());
     }
     info.robots.push_back(robot);
   }
@@ -344,6 +375,18 @@ RobotRecording readRobotRecording(const std::string& dir_in, const RecordingInfo
                              " frames, dataset.yaml says " + std::to_string(robot.frames));
   rec.odometry = readPoses(rec.dir + "/odometry.csv");
   rec.commands = readCommands(rec.dir + "/commands.csv");
+  if (info.version >= 2) {
+    rec.status = readStatus(rec.dir + "/status.csv");
+    const std::string agent = rec.dir + "/agent.yaml";
+    if (!fileExists(agent)) throw std::runtime_error(agent + ": missing file");
+    rec.agent = readAgentConfig(YamlField::loadFile(agent));
+    if (rec.agent->setup.name != rec.name)
+      throw std::runtime_error(agent + ": the agent's name '" + rec.agent->setup.name +
+                               "' is not the robot's '" + rec.name + "'");
+    if (rec.status.size() != rec.odometry.size())
+      throw std::runtime_error(rec.dir + "/status.csv: " + std::to_string(rec.status.size()) +
+                               " rows for odometry.csv's " + std::to_string(rec.odometry.size()));
+  }
   if (fileExists(rec.dir + "/groundtruth.csv"))
     rec.groundtruth = readPoses(rec.dir + "/groundtruth.csv");
   const std::string occupancy = rec.dir + "/groundtruth_occupancy.png";

@@ -2,8 +2,8 @@
 // odometry, commands, rig calibration, robot description, and ground truth when it comes from
 // the simulator), in a documented, versioned folder layout that needs no coopmap to read.
 //
-// Layout, format "coopmap-recording" version 1 (recordingReadme() is the full description,
-// written as README.md into every recording):
+// Layout, format "coopmap-recording" version 2 (recordingReadme() is the full description,
+// written as README.md into every recording; version 1 had no status.csv nor agent.yaml):
 //   DIR/README.md                 how to read the folder
 //   DIR/dataset.yaml              format, version, source, world, seed, rates, map limits, robots
 //   DIR/floor.png                 optional (simulator): 255 where the world has a floor
@@ -12,6 +12,9 @@
 //   DIR/<robot>/images/NNNNNN_{reference,horizontal,vertical}.png  8-bit grey, lossless
 //   DIR/<robot>/odometry.csv      stamp,x,y,theta at the control rate
 //   DIR/<robot>/commands.csv      stamp,kind,linear,angular,amount at the control rate
+//   DIR/<robot>/status.csv        stamp,bumped,contact_events,segment_active,bump_bearing at the
+//                                 control rate (bump_bearing empty when the base says none)
+//   DIR/<robot>/agent.yaml        the robot's agent: setup and settings (agent_config_io.h)
 //   DIR/<robot>/groundtruth.csv   optional (simulator): stamp,x,y,theta, the true pose
 //   DIR/<robot>/groundtruth_occupancy.png  optional (simulator): 255 occupied, 0 free
 // Numbers are written with 17 significant digits, so every double reads back exactly.
@@ -24,6 +27,7 @@
 #include <string>
 #include <vector>
 
+#include "core/agent/agent_config_io.h"
 #include "core/correction/traverse_log.h"
 #include "core/geometry/pose2.h"
 #include "core/io/tum.h"
@@ -33,13 +37,16 @@
 namespace coopmap {
 
 inline constexpr const char* kRecordingFormat = "coopmap-recording";
-inline constexpr int kRecordingVersion = 1;
+inline constexpr int kRecordingVersion = 2;
+inline constexpr int kOldestRecordingVersion = 1;  // still read (replayed by a mapper alone)
 
 // One robot's entry in dataset.yaml.
 struct RecordedRobotInfo {
   std::string name;
   int frames = 0;              // lines of frames.csv (a shorter file is truncated)
   std::optional<Pose2> start;  // true start pose X_WR (simulator recordings)
+  // X_WM: the robot's map frame in the world (simulator recordings), to score in the map frame.
+  std::optional<Pose2> map_in_world;
 };
 
 // dataset.yaml: what the recording holds and what the core needs beside the robot stream.
@@ -52,6 +59,7 @@ struct RecordingInfo {
   double sensing_rate = 3.0;         // Hz
   double control_rate = 20.0;        // Hz; odometry.csv and commands.csv rows
   MapLimits map;                     // the grid the live run mapped into
+  bool shared_map = false;           // the robots' agents shared a map during the run
   std::vector<RecordedRobotInfo> robots;
 };
 
@@ -68,6 +76,11 @@ struct RecordedCommand {
   MotionCommand command;
 };
 
+struct RecordedStatus {
+  double stamp = 0.0;  // s
+  RobotStatus status;
+};
+
 // Everything of one robot in a recording but its images.
 struct RobotRecording {
   std::string name;
@@ -76,6 +89,8 @@ struct RobotRecording {
   std::vector<RecordedFrame> frames;
   std::vector<StampedPose2> odometry;     // control rate
   std::vector<RecordedCommand> commands;  // control rate
+  std::vector<RecordedStatus> status;     // control rate (version 2)
+  std::optional<AgentConfig> agent;       // its agent's setup and settings (version 2)
   std::vector<StampedPose2> groundtruth;  // empty unless recorded
   std::optional<GridU8> truth_occupancy;  // 1 occupied, 0 free; over RecordingInfo::map
 };
@@ -95,8 +110,9 @@ std::string encodeRobotDescription(const RobotDescription& description);
 // Reads DIR/dataset.yaml. Throws std::runtime_error (ConfigError for malformed YAML) naming
 // the file: missing (an incomplete recording), another format, an unknown version.
 RecordingInfo readRecordingInfo(const std::string& dir);
-// Reads DIR/<robot>/: robot.yaml, frames.csv, odometry.csv, commands.csv and the optional
-// ground truth. Errors name the file, the line (and frame) and the field.
+// Reads DIR/<robot>/: robot.yaml, frames.csv, odometry.csv, commands.csv, status.csv and
+// agent.yaml (version 2) and the optional ground truth. Errors name the file, the line (and
+// frame) and the field.
 RobotRecording readRobotRecording(const std::string& dir, const RecordingInfo& info,
                                   const RecordedRobotInfo& robot);
 // Reads the optional DIR/floor.png over info.map.

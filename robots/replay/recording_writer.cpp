@@ -73,12 +73,13 @@ int RecordingWriter::addRobot(const std::string& name, const RobotDescription& d
   fs::create_directories(tmp_ + "/" + name + "/images", ec);
   if (ec) throw std::runtime_error("cannot create '" + tmp_ + "/" + name + "': " + ec.message());
   writePlain(tmp_ + "/" + name + "/robot.yaml", encodeRobotDescription(description));
-  info_.robots.push_back({name, 0, start});
+  info_.robots.push_back({name, 0, start, std::nullopt});
   Robot r;
   r.name = name;
   r.frames_csv = "frame,stamp,x,y,theta,segment\n";
   r.odometry_csv = r.groundtruth_csv = "stamp,x,y,theta\n";
   r.commands_csv = "stamp,kind,linear,angular,amount\n";
+  r.status_csv = "stamp,bumped,contact_events,segment_active,bump_bearing\n";
   robots_.push_back(std::move(r));
   return static_cast<int>(robots_.size()) - 1;
 }
@@ -104,9 +105,14 @@ void RecordingWriter::addFrame(int robot, const TrinocularFrame& frame, MotionSe
 }
 
 void RecordingWriter::addControl(int robot, double stamp, const Pose2& odometry,
-                                 const MotionCommand& command, const std::optional<Pose2>& truth) {
+                                 const RobotStatus& status, const MotionCommand& command,
+                                 const std::optional<Pose2>& truth) {
   Robot& r = robots_.at(static_cast<size_t>(robot));
   r.odometry_csv += poseRow(stamp, odometry);
+  r.status_csv += formatExact(stamp) + "," + (status.bumped ? "1" : "0") + "," +
+                  std::to_string(status.contact_events) + "," +
+                  (status.segment_active ? "1" : "0") + "," +
+                  (status.bump_bearing ? formatExact(*status.bump_bearing) : "") + "\n";
   r.commands_csv += formatExact(stamp) + "," + kindName(command.kind) + "," +
                     formatExact(command.linear) + "," + formatExact(command.angular) + "," +
                     formatExact(command.amount) + "\n";
@@ -114,6 +120,16 @@ void RecordingWriter::addControl(int robot, double stamp, const Pose2& odometry,
     r.groundtruth_csv += poseRow(stamp, *truth);
     r.has_truth = true;
   }
+}
+
+void RecordingWriter::setAgent(int robot, const AgentConfig& agent) {
+  const Robot& r = robots_.at(static_cast<size_t>(robot));
+  writePlain(tmp_ + "/" + r.name + "/agent.yaml",
+             "# coopmap agent: setup and settings (see ../README.md)\n" + agentConfigYaml(agent));
+}
+
+void RecordingWriter::setMapInWorld(int robot, const Pose2& X_WM) {
+  info_.robots.at(static_cast<size_t>(robot)).map_in_world = X_WM;
 }
 
 void RecordingWriter::setTruthOccupancy(int robot, const GridU8& occupancy) {
@@ -132,6 +148,7 @@ void RecordingWriter::finish() {
     writeFileAtomic(d + "/frames.csv", r.frames_csv);
     writeFileAtomic(d + "/odometry.csv", r.odometry_csv);
     writeFileAtomic(d + "/commands.csv", r.commands_csv);
+    writeFileAtomic(d + "/status.csv", r.status_csv);
     if (r.has_truth) writeFileAtomic(d + "/groundtruth.csv", r.groundtruth_csv);
   }
   writeFileAtomic(tmp_ + "/README.md", recordingReadme());

@@ -26,10 +26,14 @@ class RecordingWriter {
   // Records a sensing cycle: the three images (8-bit grey) and the motion segment since the
   // previous one. Throws std::runtime_error naming the file when it cannot be written.
   void addFrame(int robot, const TrinocularFrame& frame, MotionSegment segment);
-  // Records a control step: odometry and the command sent at `stamp` (s), and the true pose
-  // when known.
-  void addControl(int robot, double stamp, const Pose2& odometry, const MotionCommand& command,
-                  const std::optional<Pose2>& truth = std::nullopt);
+  // Records a control step: odometry, the base's status and the command sent at `stamp` (s),
+  // and the true pose when known.
+  void addControl(int robot, double stamp, const Pose2& odometry, const RobotStatus& status,
+                  const MotionCommand& command, const std::optional<Pose2>& truth = std::nullopt);
+  // The robot's agent (its setup and settings): a replay runs the same one.
+  void setAgent(int robot, const AgentConfig& agent);
+  // Where the robot's map frame stands in the world (simulator recordings).
+  void setMapInWorld(int robot, const Pose2& X_WM);
   // Optional ground truth: a robot's true occupancy and the world's floor over info.map.
   void setTruthOccupancy(int robot, const GridU8& occupancy);
   void setFloor(const GridU8& floor);
@@ -43,7 +47,7 @@ class RecordingWriter {
  private:
   struct Robot {
     std::string name;
-    std::string frames_csv, odometry_csv, commands_csv, groundtruth_csv;
+    std::string frames_csv, odometry_csv, commands_csv, status_csv, groundtruth_csv;
     bool has_truth = false;
   };
   std::string dir_, tmp_;

@@ -15,8 +15,22 @@ ReplayRobot::ReplayRobot(RobotRecording recording) : recording_(std::move(record
   }
 }
 
+void ReplayRobot::advanceTo(double t) {
+  stepped_ = true;
+  now_ = std::max(now_, t);
+}
+
+RobotStatus ReplayRobot::status() const {
+  const auto& rows = recording_.status;
+  const auto after =
+      std::upper_bound(rows.begin(), rows.end(), now_ + 1e-9,
+                       [](double t, const RecordedStatus& r) { return t < r.stamp; });
+  return after == rows.begin() ? RobotStatus{} : std::prev(after)->status;
+}
+
 std::optional<TrinocularFrame> ReplayRobot::captureFrame() {
   if (next_ >= recording_.frames.size()) return std::nullopt;
+  if (stepped_ && recording_.frames[next_].stamp > now_ + 1e-9) return std::nullopt;
   TrinocularFrame frame = readRecordedFrame(recording_, next_);
   const RecordedFrame& f = recording_.frames[next_];
   ++next_;

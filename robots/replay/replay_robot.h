@@ -10,11 +10,14 @@
 namespace coopmap {
 
 // Plays the frames in order at their stamps. The clock starts at the first recorded stamp
-// (odometry or frame); captureFrame() returns the next frame, reading its images from disk,
-// and moves the clock forward to its stamp (a recording waits for its next frame); nullopt
-// once every frame was returned. odometry() is the last recorded odometry sample at or
-// before now() (the frame's own pose at a frame's stamp). A recording cannot be steered:
-// command() is accepted and ignored. status() reports no contact.
+// (odometry or frame). Left to itself, captureFrame() returns the next frame, reading its
+// images from disk, and moves the clock forward to its stamp (a recording waits for its next
+// frame); nullopt once every frame was returned. Stepped (advanceTo: the replay of a run's
+// agents, control step by control step), captureFrame() returns the next frame only if it
+// was taken by now. odometry() is the last recorded odometry sample at or before now() (the
+// frame's own pose at a frame's stamp); status() the last recorded status (version 2; no
+// contact before it, or without). A recording cannot be steered: command() is accepted and
+// ignored.
 class ReplayRobot final : public RobotInterface {
  public:
   explicit ReplayRobot(RobotRecording recording);
@@ -26,7 +29,10 @@ class ReplayRobot final : public RobotInterface {
   std::optional<TrinocularFrame> captureFrame() override;
   Pose2 odometry() const override;
   void command(const MotionCommand&) override {}  // a recording cannot be steered
-  RobotStatus status() const override { return {}; }
+  RobotStatus status() const override;
+
+  // Moves the clock to `t` (s, not backwards) and from then on plays stepped (see above).
+  void advanceTo(double t);
 
   // The motion segment recorded with the last frame captureFrame() returned.
   MotionSegment lastSegment() const { return last_segment_; }
@@ -38,6 +44,7 @@ class ReplayRobot final : public RobotInterface {
   RobotRecording recording_;
   size_t next_ = 0;
   double now_ = 0.0;
+  bool stepped_ = false;
   Pose2 frame_odometry_;  // the pose of the last frame, held until a later odometry sample
   MotionSegment last_segment_ = MotionSegment::kStop;
 };

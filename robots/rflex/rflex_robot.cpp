@@ -15,6 +15,9 @@
 namespace coopmap {
 namespace {
 
+// s of odometry kept for the frames' odometry at capture (odometryAt).
+constexpr double kHistorySeconds = 3.0;
+
 constexpr double kTurnTolerance = 0.004;      // rad: a turn segment ends within this
 constexpr double kStraightTolerance = 0.003;  // m: a straight segment ends within this
 constexpr double kMinSegmentTurnRate = 0.05;  // rad/s, so a turn does not crawl
@@ -115,6 +118,19 @@ double RflexRobot::now() const {
 Pose2 RflexRobot::odometry() const {
   std::lock_guard lock(mutex_);
   return pose_;
+}
+
+Pose2 RflexRobot::odometryAt(double t) const {
+  std::lock_guard lock(mutex_);
+  if (history_.empty() || t >= history_.back().first) return pose_;
+  if (t <= history_.front().first) return history_.front().second;
+  auto after = history_.begin();
+  while (after->first < t) ++after;
+  const auto& [t1, p1] = *after;
+  const auto& [t0, p0] = *std::prev(after);
+  const double f = t1 > t0 ? (t - t0) / (t1 - t0) : 1.0;
+  return Pose2(p0.x + f * (p1.x - p0.x), p0.y + f * (p1.y - p0.y),
+               wrapAngle(p0.theta + f * wrapAngle(p1.theta - p0.theta)));
 }
 
 void RflexRobot::command(const MotionCommand& cmd) {
@@ -224,6 +240,10 @@ void RflexRobot::handle(const rflex::Packet& p, double t) {
       pose_.y += pending_distance_ * std::sin(mid);
       pose_.theta = wrapAngle(pose_.theta + dtheta);
       pending_distance_ = 0.0;
+      // A few seconds of poses, for the frames' odometry at capture (odometryAt).
+      history_.emplace_back(t, pose_);
+      while (history_.size() > 1 && t - history_.front().first > kHistorySeconds)
+        history_.pop_front();
       have_rotation_ = true;
       last_rotation_ = r->position;
       stats_.rotation_ticks = r->position;

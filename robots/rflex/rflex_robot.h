@@ -15,12 +15,14 @@
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
+#include <deque>
 #include <memory>
 #include <mutex>
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <thread>
+#include <utility>
 
 #include "core/robot/robot_interface.h"
 #include "robots/rflex/rflex_protocol.h"
@@ -80,6 +82,9 @@ class RflexRobot final : public RobotInterface {
   std::optional<TrinocularFrame> captureFrame() override { return std::nullopt; }
   // Odometry X_OR integrated from the encoders since opening (starts at the origin).
   Pose2 odometry() const override;
+  // The odometry at time `t` (s, now()'s clock) of the last few seconds, interpolated between
+  // the reports around it (the latest for a later time, the earliest kept for an earlier one).
+  Pose2 odometryAt(double t) const;
   // Velocity (clamped to the description's limits) or a turn/straight segment run on
   // odometry. Ignored after a fault or with motion disabled.
   void command(const MotionCommand& cmd) override;
@@ -111,6 +116,7 @@ class RflexRobot final : public RobotInterface {
   std::condition_variable first_report_;
   // Guarded by mutex_:
   Pose2 pose_;
+  std::deque<std::pair<double, Pose2>> history_;  // (driver clock s, pose) of the last reports
   bool have_translation_ = false, have_rotation_ = false;
   int32_t last_translation_ = 0, last_rotation_ = 0;
   double pending_distance_ = 0.0;       // m reported by translation, not yet integrated

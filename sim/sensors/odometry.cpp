@@ -23,14 +23,14 @@ void OdometryConfig::validate() const {
     bad("angular_noise", "a number in [0, 1)", angular_noise);
 }
 
-OdometryModel::OdometryModel(const OdometryConfig& config, const Pose2& start, uint64_t seed)
-    : config_(config), pose_(start), rng_(seed) {
+OdometryModel::OdometryModel(const OdometryConfig& config, const Pose2& true_start, uint64_t seed)
+    : config_(config), start_inverse_(true_start.inverse()), rng_(seed) {
   config_.validate();
 }
 
 void OdometryModel::integrate(const BodyVelocity& v, const Pose2& true_pose, double dt) {
   if (config_.perfect) {
-    pose_ = true_pose;
+    pose_ = start_inverse_ * true_pose;
     return;
   }
   // Random errors grow with the distance driven and the angle turned, not with time.

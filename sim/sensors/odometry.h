@@ -11,7 +11,7 @@
 namespace coopmap::sim {
 
 struct OdometryConfig {
-  bool perfect = false;           // report the true pose (for tests and baselines)
+  bool perfect = false;           // report the true motion since the start (tests and baselines)
   double scale_error = 0.0;       // fraction: measured distance = (1 + e) * true
   double turn_scale_error = 0.0;  // fraction: measured rotation = (1 + e) * true
   double heading_drift = 0.0;     // rad per metre driven (wheel misalignment)
@@ -24,13 +24,16 @@ struct OdometryConfig {
 
 class OdometryModel {
  public:
-  OdometryModel(const OdometryConfig& config, const Pose2& start, uint64_t seed);
+  // `true_start`: the robot's true pose at the start (world frame). The odometry starts at
+  // the origin, as encoders do.
+  OdometryModel(const OdometryConfig& config, const Pose2& true_start, uint64_t seed);
   // Integrates one physics step of the measured body velocity.
   void integrate(const BodyVelocity& measured, const Pose2& true_pose, double dt);
-  const Pose2& pose() const { return pose_; }
+  const Pose2& pose() const { return pose_; }  // X_OR, odometry frame
 
  private:
   OdometryConfig config_;
+  Pose2 start_inverse_;  // X_OW: the world in the odometry frame
   Pose2 pose_;
   std::mt19937_64 rng_;
   std::normal_distribution<double> normal_{0.0, 1.0};

@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 
+#include "core/agent/agent_settings.h"
 #include "core/agent/route_follower.h"
 #include "core/geometry/pose2.h"
 
@@ -172,59 +173,13 @@ struct World {
   std::vector<TargetSpec> targets;  // drawn by the renderer only: they take no physical space
   double map_resolution = 0.05;     // m per cell for maps and ground truth
   double physics_rate = 200.0;      // Hz
-  double sensing_rate = 3.0;        // Hz (the paper's rate)
   double control_rate = 20.0;       // Hz
   // What `coopmap run` does by default: "routes" (each robot follows its scripted route) or
   // "explore" (autonomous missions: sorties from the home base, shared map).
   std::string mission = "routes";
-  // Settings of autonomous missions the building calls for (`mission: {mode: explore, ...}`;
-  // unset: coopmap's defaults; the command line overrides them). A building of long
-  // corridors wants other settings than a room: see worlds/lab_corridor.yaml.
-  struct Exploration {
-    std::optional<double> sortie_budget_m;         // m of a sortie
-    std::optional<double> first_sortie_budget_m;   // m of the first (calibration) sortie
-    std::optional<double> safety_distance;         // m: MissionConfig::safety_distance
-    std::optional<double> slow_distance;           // m: MissionConfig::slow_distance
-    std::optional<double> fringe_clearance;        // m: FrontierConfig::fringe_clearance
-    std::optional<double> goal_clearance;          // m: FrontierConfig::goal_clearance
-    std::optional<double> doorway_width;           // m: FrontierConfig::doorway_width
-    std::optional<bool> retry_frontiers;           // MissionConfig::retry_frontiers
-    std::optional<double> floor_edge_depth;        // m: RadialMapConfig::floor_edge_depth
-    std::optional<int> beyond_support;             // pixels: RadialMapConfig::beyond_support
-    std::optional<bool> shaped_closures;           // CooperationConfig::closure_shape
-    std::optional<bool> bump_away;                 // MissionConfig::bump_away
-    std::optional<double> visited_radius;          // m: MissionConfig::visited_radius
-    std::optional<double> max_linear_accel;        // m/s^2: MissionConfig::max_linear_accel
-    std::optional<double> recent_hits_s;           // s: MissionConfig::recent_hits_s
-    std::optional<bool> calibrate_distance_scale;  // OdometryCalibration's distance scale
-    std::optional<bool> stereo_distance_scale;     // that scale from stereo (stereo_scale.h)
-    // The robots' distance scale calibrated beforehand (`coopmap stereo-scale` over logs):
-    // what the calibration starts from (fraction by which the odometry over-counts).
-    std::optional<double> odometry_distance_scale;
-    std::optional<double> passage_width;     // m: MissionConfig::passage_width
-    std::optional<double> planning_margin;   // m: PlanningMapConfig::margin of exploring robots
-    std::optional<double> preferred_margin;  // m: PlannerConfig::preferred_margin of the same
-    // The sorties' loop closures: "none", "self", "shared" or "both" (CooperationConfig::
-    // closures and self_closures; `coopmap run --closures`).
-    std::optional<std::string> closures;
-    std::optional<double> post_gate_m;  // m: CooperationConfig::post_gate_m (0: off)
-    // deg: CooperationConfig::manhattan_sigma_rad, headings from walls along the map frame's
-    // axes (0: off)
-    std::optional<double> manhattan_sigma_deg;
-    // WallHeadingConfig::gain: the walls turn the estimate's heading while driving (0: off)
-    std::optional<double> wall_heading_gain;
-    // CooperationConfig::closure_scans: radial maps per stretch of a sortie's correction (its
-    // closures, its headings from the walls, its post gate)
-    std::optional<int> closure_scans;
-    // AlignmentConfig::seen_points_only of the sorties' alignments to the shared map (their
-    // closures, post gate and rival check)
-    std::optional<bool> closure_seen_points;
-    // AlignmentConfig::decided_points_only of the same alignments.
-    std::optional<bool> closure_decided_points;
-    // FrontierConfig::look_again_gain: never-observed cells a frontier whose goal was reached
-    // must still have to be gone to once more, for a full turn there (0: off)
-    std::optional<int> look_again_gain;
-  } exploration;
+  // The robots' settings its `mission:` block names, over coopmap's defaults (the command
+  // line overrides them).
+  AgentSettings mission_settings;
 
   // The floor's rectangles: `floor_areas`, or the bounding rectangle if that is empty.
   std::vector<FloorArea> floorRects() const;

@@ -216,89 +216,8 @@ World parseWorld(const std::string& text, const std::string& file) {
     w.mission = mode.asString();
     if (w.mission != "routes" && w.mission != "explore") mode.fail("'routes' or 'explore'");
     if (mission->isMap()) {
-      mission->allowOnly({"mode",
-                          "sortie_budget_m",
-                          "first_sortie_budget_m",
-                          "safety_distance",
-                          "slow_distance",
-                          "fringe_clearance",
-                          "doorway_width",
-                          "goal_clearance",
-                          "retry_frontiers",
-                          "floor_edge_depth",
-                          "beyond_support",
-                          "shaped_closures",
-                          "bump_away",
-                          "visited_radius",
-                          "max_linear_accel",
-                          "calibrate_distance_scale",
-                          "stereo_distance_scale",
-                          "odometry_distance_scale",
-                          "passage_width",
-                          "planning_margin",
-                          "preferred_margin",
-                          "closures",
-                          "post_gate_m",
-                          "recent_hits_s",
-                          "manhattan_sigma_deg",
-                          "wall_heading_gain",
-                          "closure_scans",
-                          "closure_seen_points",
-                          "closure_decided_points",
-                          "look_again_gain"});
-      World::Exploration& e = w.exploration;
-      auto metres = [&](const char* key, double lo, double hi, const char* what,
-                        std::optional<double>& out) {
-        if (mission->has(key)) out = (*mission)[key].asDouble(lo, hi, what);
-      };
-      metres("sortie_budget_m", 1.0, 10000.0, "metres in [1, 10000]", e.sortie_budget_m);
-      metres("first_sortie_budget_m", 0.0, 10000.0, "metres in [0, 10000] (0: the sortie budget)",
-             e.first_sortie_budget_m);
-      metres("safety_distance", 0.05, 5.0, "metres in [0.05, 5]", e.safety_distance);
-      metres("slow_distance", 0.0, 10.0, "metres in [0, 10] (0: never slow down)", e.slow_distance);
-      metres("fringe_clearance", 0.0, 5.0, "metres in [0, 5] (0: off)", e.fringe_clearance);
-      metres("doorway_width", 0.0, 5.0, "metres in [0, 5] (0: off)", e.doorway_width);
-      metres("goal_clearance", 0.0, 5.0, "metres in [0, 5] (0: off)", e.goal_clearance);
-      metres("floor_edge_depth", 0.0, 5.0, "metres in [0, 5] (0: off)", e.floor_edge_depth);
-      metres("passage_width", 0.0, 5.0, "metres in [0, 5] (0: off)", e.passage_width);
-      metres("planning_margin", 0.0, 1.0, "metres in [0, 1]", e.planning_margin);
-      metres("preferred_margin", 0.0, 2.0, "metres in [0, 2] (0: off)", e.preferred_margin);
-      metres("post_gate_m", 0.0, 2.0, "metres in [0, 2] (0: off)", e.post_gate_m);
-      metres("recent_hits_s", 0.0, 600.0, "seconds in [0, 600] (0: off)", e.recent_hits_s);
-      metres("manhattan_sigma_deg", 0.0, 10.0, "degrees in [0, 10] (0: off)",
-             e.manhattan_sigma_deg);
-      metres("wall_heading_gain", 0.0, 1.0, "a share in [0, 1] (0: off)", e.wall_heading_gain);
-      metres("odometry_distance_scale", -0.05, 0.05,
-             "a fraction in [-0.05, 0.05] (the odometry's over-count of distance)",
-             e.odometry_distance_scale);
-      metres("visited_radius", 0.0, 1.0, "metres in [0, 1] (0: the robot's radius)",
-             e.visited_radius);
-      metres("max_linear_accel", 0.0, 10.0, "m/s^2 in [0, 10] (0: the base's)", e.max_linear_accel);
-      if (mission->has("retry_frontiers"))
-        e.retry_frontiers = (*mission)["retry_frontiers"].asBool();
-      if (mission->has("shaped_closures"))
-        e.shaped_closures = (*mission)["shaped_closures"].asBool();
-      if (mission->has("closure_seen_points"))
-        e.closure_seen_points = (*mission)["closure_seen_points"].asBool();
-      if (mission->has("closure_decided_points"))
-        e.closure_decided_points = (*mission)["closure_decided_points"].asBool();
-      if (mission->has("bump_away")) e.bump_away = (*mission)["bump_away"].asBool();
-      if (mission->has("beyond_support"))
-        e.beyond_support = (*mission)["beyond_support"].asInt(1, 100);
-      if (mission->has("closure_scans"))
-        e.closure_scans = (*mission)["closure_scans"].asInt(1, 100);
-      if (mission->has("look_again_gain"))
-        e.look_again_gain = (*mission)["look_again_gain"].asInt(0, 10000);
-      if (mission->has("closures")) {
-        const YamlField f = (*mission)["closures"];
-        e.closures = f.asString();
-        if (!CooperationConfig{}.setClosureKinds(*e.closures))
-          f.fail("one of none, self, shared, both");
-      }
-      if (mission->has("calibrate_distance_scale"))
-        e.calibrate_distance_scale = (*mission)["calibrate_distance_scale"].asBool();
-      if (mission->has("stereo_distance_scale"))
-        e.stereo_distance_scale = (*mission)["stereo_distance_scale"].asBool();
+      // Every key but the mode is one of the agents' settings (core/agent/agent_settings.h).
+      readAgentSettings(*mission, w.mission_settings, {"mode"});
     }
   }
   if (root.has("seed")) w.seed = static_cast<uint64_t>(root["seed"].asInt(0, 1 << 30));
@@ -338,13 +257,11 @@ World parseWorld(const std::string& text, const std::string& file) {
   w.floor_texture = textureRef(floor, w, "");
 
   if (const auto sim = root.get("simulation")) {
-    sim->allowOnly({"map_resolution", "physics_rate", "sensing_rate", "control_rate"});
+    sim->allowOnly({"map_resolution", "physics_rate", "control_rate"});
     w.map_resolution = optionalDouble(*sim, "map_resolution", w.map_resolution, 0.01, 1.0,
                                       "a cell size in [0.01, 1] m");
     w.physics_rate = optionalDouble(*sim, "physics_rate", w.physics_rate, 50.0, 2000.0,
                                     "a rate in [50, 2000] Hz");
-    w.sensing_rate =
-        optionalDouble(*sim, "sensing_rate", w.sensing_rate, 0.1, 60.0, "a rate in [0.1, 60] Hz");
     w.control_rate =
         optionalDouble(*sim, "control_rate", w.control_rate, 1.0, 200.0, "a rate in [1, 200] Hz");
   }
@@ -400,25 +317,28 @@ World parseWorld(const std::string& text, const std::string& file) {
     }
   }
 
-  const YamlField hb = root["home_base"];
-  hb.allowOnly({"corners", "arm_length", "thickness", "height", "texture"});
-  const auto corners = hb["corners"].elements();
-  if (corners.size() != 2) hb["corners"].fail("exactly 2 corners");
-  for (const YamlField& c : corners) {
-    c.allowOnly({"position", "heading_deg"});
-    HomeBaseSpec::Corner corner;
-    corner.position = c["position"].asVector2();
-    corner.heading = c["heading_deg"].asDouble(-360, 360, "degrees in [-360, 360]") * kDeg;
-    if (!inside(w, corner.position)) c["position"].fail("a point on the floor");
-    w.home_base.corners.push_back(corner);
+  // Optional: without one, robots map in their own start frames.
+  if (const auto home = root.get("home_base")) {
+    const YamlField& hb = *home;
+    hb.allowOnly({"corners", "arm_length", "thickness", "height", "texture"});
+    const auto corners = hb["corners"].elements();
+    if (corners.size() != 2) hb["corners"].fail("exactly 2 corners");
+    for (const YamlField& c : corners) {
+      c.allowOnly({"position", "heading_deg"});
+      HomeBaseSpec::Corner corner;
+      corner.position = c["position"].asVector2();
+      corner.heading = c["heading_deg"].asDouble(-360, 360, "degrees in [-360, 360]") * kDeg;
+      if (!inside(w, corner.position)) c["position"].fail("a point on the floor");
+      w.home_base.corners.push_back(corner);
+    }
+    w.home_base.arm_length = optionalDouble(hb, "arm_length", w.home_base.arm_length, 0.2, 3.0,
+                                            "a length in [0.2, 3] m");
+    w.home_base.thickness = optionalDouble(hb, "thickness", w.home_base.thickness, 0.01, 0.5,
+                                           "a thickness in [0.01, 0.5] m");
+    w.home_base.height =
+        optionalDouble(hb, "height", w.home_base.height, 0.3, 3.0, "a height in [0.3, 3] m");
+    w.home_base.texture = textureRef(hb, w, "");
   }
-  w.home_base.arm_length =
-      optionalDouble(hb, "arm_length", w.home_base.arm_length, 0.2, 3.0, "a length in [0.2, 3] m");
-  w.home_base.thickness = optionalDouble(hb, "thickness", w.home_base.thickness, 0.01, 0.5,
-                                         "a thickness in [0.01, 0.5] m");
-  w.home_base.height =
-      optionalDouble(hb, "height", w.home_base.height, 0.3, 3.0, "a height in [0.3, 3] m");
-  w.home_base.texture = textureRef(hb, w, "");
 
   if (const auto surfaces = root.get("surfaces")) {
     for (const YamlField& f : surfaces->elements()) {

@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "apps/remap_command.h"
+#include "sim/runner/remap.h"
 
 namespace coopmap {
 namespace {

@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "apps/remap_command.h"
+#include "sim/runner/remap.h"
 #include "tests/support/radial_reading.h"
 
 namespace coopmap {

@@ -1,5 +1,5 @@
 // report.html and trajectories.png from a small synthetic run.
-#include "apps/report_html.h"
+#include "sim/runner/report_html.h"
 
 #include <cmath>
 #include <filesystem>

@@ -1,5 +1,5 @@
 // `coopmap stereo-scale`: the odometry's distance scale measured by stereo over runs' logs.
-#include "apps/stereo_scale_command.h"
+#include "sim/runner/stereo_scale_logs.h"
 
 #include <filesystem>
 #include <stdexcept>

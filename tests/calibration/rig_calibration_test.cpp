@@ -20,10 +20,10 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgcodecs.hpp>
 
-#include "apps/calibrate_command.h"
 #include "core/calibration/rig_calibration.h"
 #include "core/io/yaml_reader.h"
 #include "core/stereo/trinocular_matcher.h"
+#include "robots/camera/calibrate_rig.h"
 #include "robots/camera/trinocular_camera.h"
 #include "sim/render/renderer.h"
 #include "sim/sensors/lens_distortion.h"

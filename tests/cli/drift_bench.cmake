@@ -30,9 +30,10 @@ if(NOT out MATCHES "\\| heading-drift \\|")
   message(FATAL_ERROR "the summary table is missing:\n${out}")
 endif()
 
-# A run's traverse log, rebuilt; then cut short and rejected clearly.
+# A run's traverse log (the look at the home base, then the first of the route), rebuilt;
+# then cut short and rejected clearly.
 execute_process(COMMAND "${COOPMAP}" run "${SOURCE_DIR}/worlds/lab.yaml" --robots 1
-                        --duration 4 --out "${WORK_DIR}/run" --quiet
+                        --duration 40 --out "${WORK_DIR}/run" --quiet
                 RESULT_VARIABLE rc ERROR_VARIABLE err)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "coopmap run failed:\n${err}")
@@ -95,16 +96,17 @@ if(NOT CMAKE_MATCH_1 EQUAL CMAKE_MATCH_2 OR CMAKE_MATCH_1 LESS 3
    OR NOT EXISTS "${WORK_DIR}/remap/map_evaluation.png")
   message(FATAL_ERROR "coopmap remap: expected every radial map placed and the scores:\n${out}")
 endif()
-# The oracle's parts: "corrected" poses 1 m east of the truth (x is positive in the lab) are
-# fixed by true positions and not by true headings.
+# The oracle's parts: "corrected" poses 1 m west of the truth (x is negative here: the map
+# frame's origin is the home base, east of the start) are fixed by true positions and not by
+# true headings.
 file(MAKE_DIRECTORY "${WORK_DIR}/shifted")
 file(COPY "${log}" "${WORK_DIR}/run/trajectory_jose_groundtruth.tum" DESTINATION "${WORK_DIR}/shifted")
 file(STRINGS "${WORK_DIR}/run/trajectory_jose_groundtruth.tum" truth_lines)
 set(shifted "")
 foreach(line IN LISTS truth_lines)
-  if(line MATCHES "^([^ #]+) ([0-9]+)(\\.[0-9]+) (.*)$")
-    math(EXPR east "${CMAKE_MATCH_2} + 1")
-    string(APPEND shifted "${CMAKE_MATCH_1} ${east}${CMAKE_MATCH_3} ${CMAKE_MATCH_4}\n")
+  if(line MATCHES "^([^ #]+) -([0-9]+)(\\.[0-9]+) (.*)$")
+    math(EXPR west "${CMAKE_MATCH_2} + 1")
+    string(APPEND shifted "${CMAKE_MATCH_1} -${west}${CMAKE_MATCH_3} ${CMAKE_MATCH_4}\n")
   endif()
 endforeach()
 file(WRITE "${WORK_DIR}/shifted/trajectory_jose_corrected.tum" "${shifted}")
@@ -123,8 +125,9 @@ endforeach()
 if(NOT out MATCHES "at their corrected positions with the true headings")
   message(FATAL_ERROR "coopmap remap --oracle heading does not say what it placed:\n${out}")
 endif()
-# The shift split by the true heading: each part alone moves walls (the robot drives east and
-# north), neither is the whole shift (the position oracle's map) nor none of it.
+# The shift split by the true heading: each part alone moves walls (the robot turns a full
+# circle, then drives north), neither is the whole shift (the position oracle's map) nor none
+# of it.
 foreach(part along across)
   if(scores_${part} STREQUAL scores_none OR scores_${part} STREQUAL scores_position)
     message(FATAL_ERROR "remap --oracle ${part} took all or none of the shift: ${scores_${part}} "
@@ -146,11 +149,11 @@ execute_process(COMMAND "${COOPMAP}" remap "${WORK_DIR}/shifted" --world "${SOUR
 if(rc EQUAL 0 OR NOT err MATCHES "--oracle: speed not in")
   message(FATAL_ERROR "a bad --oracle was not reported clearly (${rc}):\n${err}")
 endif()
-# A run of one robot has no corrected traverses: the missing file is named.
+# The 40 s run ended before the robot came home: no radial map has a corrected pose.
 execute_process(COMMAND "${COOPMAP}" remap "${WORK_DIR}/run" --world "${SOURCE_DIR}/worlds/lab.yaml"
                 RESULT_VARIABLE rc ERROR_VARIABLE err)
-if(rc EQUAL 0 OR NOT err MATCHES "trajectory_jose_corrected\\.tum: cannot read")
-  message(FATAL_ERROR "a missing trajectory was not reported clearly (${rc}):\n${err}")
+if(rc EQUAL 0 OR NOT err MATCHES "none of the [0-9]+ radial maps has a corrected pose")
+  message(FATAL_ERROR "a run without corrected poses was not reported clearly (${rc}):\n${err}")
 endif()
 # A corrupt trajectory line is named by file and line, and nothing is written.
 file(MAKE_DIRECTORY "${WORK_DIR}/bad_run")

@@ -1,16 +1,23 @@
-# `coopmap run --record` and `coopmap replay`: a recording replays to the live run's maps byte
-# for byte; a broken recording gets a message naming the file and frame, a non-zero exit code,
-# and nothing written.
+# `coopmap run --record` and `coopmap replay`: the same agents run on a recording, observe-only,
+# reproduce the live run's maps and traverse logs byte for byte (two exploring robots, each
+# placed by its looks at the home base, one driving nearer to look again, a sortie ended at
+# home: corrected, posted, the shared map imported); a broken recording gets a message naming
+# the file and frame, a non-zero exit code, and nothing written.
 file(REMOVE_RECURSE "${WORK_DIR}")
 file(MAKE_DIRECTORY "${WORK_DIR}")
 execute_process(COMMAND "${COOPMAP}" run "${SOURCE_DIR}/worlds/lab.yaml" --out "${WORK_DIR}/live"
-                        --record "${WORK_DIR}/rec" --robots 1 --duration 3 --quiet
+                        --record "${WORK_DIR}/rec" --explore --duration 150 --max-sorties 3
+                        --sortie-budget-m 4 --quiet
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "coopmap run --record failed (rc ${rc}):\n${out}${err}")
 endif()
+if(NOT out MATCHES "jose sortie 1 at [0-9]+ s: [0-9]+ scans, fixed, posted")
+  message(FATAL_ERROR "the recorded run ended no sortie at home:\n${out}")
+endif()
 foreach(f README.md dataset.yaml jose/robot.yaml jose/frames.csv jose/odometry.csv
-          jose/commands.csv jose/groundtruth.csv jose/images/000003_vertical.png)
+          jose/commands.csv jose/status.csv jose/agent.yaml jose/groundtruth.csv
+          jose/images/000003_vertical.png eric/agent.yaml)
   if(NOT EXISTS "${WORK_DIR}/rec/${f}")
     message(FATAL_ERROR "coopmap run --record did not write ${f}")
   endif()
@@ -22,7 +29,8 @@ if(NOT rc EQUAL 0 OR NOT out MATCHES "jose: [0-9]+ frames")
   message(FATAL_ERROR "coopmap replay failed on a good recording (rc ${rc}):\n${out}${err}")
 endif()
 foreach(f map_jose.pgm map_jose.yaml map_jose.png traverse_jose.traverse
-          trajectory_jose_odometry.tum)
+          trajectory_jose_odometry.tum map_eric.pgm traverse_eric.traverse
+          trajectory_eric_groundtruth.tum)
   execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files "${WORK_DIR}/live/${f}"
                           "${WORK_DIR}/replay/${f}" RESULT_VARIABLE same)
   if(NOT same EQUAL 0)
@@ -46,7 +54,7 @@ endif()
 
 # An unknown version.
 file(READ "${WORK_DIR}/rec/dataset.yaml" dataset)
-string(REPLACE "version: 1" "version: 9" dataset "${dataset}")
+string(REPLACE "version: 2" "version: 9" dataset "${dataset}")
 file(WRITE "${WORK_DIR}/rec/dataset.yaml" "${dataset}")
 execute_process(COMMAND "${COOPMAP}" replay "${WORK_DIR}/rec" --out "${WORK_DIR}/bad"
                 RESULT_VARIABLE rc ERROR_VARIABLE err)

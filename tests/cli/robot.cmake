@@ -89,11 +89,31 @@ if(NOT rc EQUAL 2 OR NOT err MATCHES "bad\\.yaml:4:9: serial\\.baud: expected a 
   message(FATAL_ERROR "a malformed config was not reported with file:line (rc ${rc}):\n${err}")
 endif()
 
-# A route-less config is fine for --dry-run only.
+# A config with neither a mission nor a route is fine for --dry-run only.
 file(WRITE "${WORK_DIR}/noroute.yaml" "model: ${model}\nserial: {device: ${tty}}\n")
 execute_process(COMMAND "${COOPMAP}" robot "${WORK_DIR}/noroute.yaml"
                 RESULT_VARIABLE rc ERROR_VARIABLE err TIMEOUT 60)
-if(NOT rc EQUAL 2 OR NOT err MATCHES "no route to follow")
+if(NOT rc EQUAL 2 OR NOT err MATCHES "nothing to do \\(add a mission with its cameras, or route")
   message(FATAL_ERROR "a config without a route was not reported (rc ${rc}):\n${err}")
+endif()
+# A mission without cameras, and one with neither a calibration nor rectified sources.
+file(WRITE "${WORK_DIR}/blind.yaml" "model: ${model}
+serial: {device: ${tty}}
+mission: {name: r, map: {origin: [0, 0], resolution: 0.05, width: 10, height: 10}}
+")
+execute_process(COMMAND "${COOPMAP}" robot "${WORK_DIR}/blind.yaml"
+                RESULT_VARIABLE rc ERROR_VARIABLE err TIMEOUT 60)
+if(NOT rc EQUAL 2 OR NOT err MATCHES "blind\\.yaml:3:10: mission: a mission needs the cameras")
+  message(FATAL_ERROR "a mission without cameras was not reported (rc ${rc}):\n${err}")
+endif()
+file(WRITE "${WORK_DIR}/unrectified.yaml" "model: ${model}
+serial: {device: ${tty}}
+cameras: {sources: [a.png, b.png, c.png]}
+mission: {name: r, map: {origin: [0, 0], resolution: 0.05, width: 10, height: 10}}
+")
+execute_process(COMMAND "${COOPMAP}" robot "${WORK_DIR}/unrectified.yaml"
+                RESULT_VARIABLE rc ERROR_VARIABLE err TIMEOUT 60)
+if(NOT rc EQUAL 2 OR NOT err MATCHES "unrectified\\.yaml:3:10: cameras: expected either 'calibration'")
+  message(FATAL_ERROR "cameras without a rectification were not reported (rc ${rc}):\n${err}")
 endif()
 message(STATUS "coopmap robot checks and drives an emulated B-14 and reports faults clearly")

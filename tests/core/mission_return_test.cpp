@@ -54,6 +54,7 @@ TEST(MissionTest, WithNoWayHomeItWaitsAndPlansAgainRatherThanDriveStraight) {
   c.look_from_m = 1.0;
   c.planner.seed = 3;
   MissionAgent mission(home, c);
+  mission.startFrom(home, 0.0);  // the odometry frame is the map frame
   Pose2 pose = home;
   const double dt = 0.05;
   double t = 0.0;
@@ -127,6 +128,7 @@ std::pair<double, double> wayHome(double max_home_detour) {
   MissionConfig c = quickFirstSortie();
   c.max_home_detour = max_home_detour;
   MissionAgent mission(home, c);
+  mission.startFrom(home, 0.0);  // the odometry frame is the map frame
   double north = 0.0, nearest = 1e9;
   carriedAway(mission, home, Pose2(3.5, 3.0, 0.0), map, 40000,
               [&](MissionPhase phase, const Pose2& pose) {
@@ -175,6 +177,7 @@ std::pair<double, double> throughTheDoor(double passage_width, double hold_s,
   MissionConfig c = quickFirstSortie();
   c.passage_width = passage_width;
   MissionAgent mission(home, c);
+  mission.startFrom(home, 0.0);  // the odometry frame is the map frame
   Pose2 pose = home;
   const double dt = 0.05;
   double held = 1e9, least = 1e9, return_start = -1.0;
@@ -222,6 +225,7 @@ std::pair<double, double> homeThroughANarrowDoor(double half_width) {
   c.planning.margin = 0.15;
   c.look_from_m = 0.5;  // no straight drive at home from beyond the door
   MissionAgent mission(home, c);
+  mission.startFrom(home, 0.0);  // the odometry frame is the map frame
   double least = 1e9, clearance = 1e9;
   carriedAway(mission, home, Pose2(4.5, 3.0, M_PI), map, 6000,
               [&](MissionPhase phase, const Pose2& pose) {
@@ -285,6 +289,7 @@ TrailHome homeOnTheTrail(int trail_after_waits, bool smear = false) {
   c.trail_after_waits = trail_after_waits;
   c.recent_hits_s = 4.0;  // the building's
   MissionAgent mission(home, c);
+  mission.startFrom(home, 0.0);  // the odometry frame is the map frame
   Pose2 pose = home;
   const double dt = 0.05;
   bool beyond = false, standing = false;

@@ -31,6 +31,7 @@ TEST(MissionTest, StopsForGoodAfterTooManyBumpsInASortie) {
   c.max_sortie_bumps = 2;
   c.planner.seed = 7;
   MissionAgent mission(home, c);
+  mission.startFrom(home, 0.0);  // the odometry frame is the map frame
   Pose2 pose = home;
   const double dt = 0.05;
   int bumps = 0;
@@ -99,6 +100,7 @@ TEST(MissionTest, BacksOffAwayFromWhereTheBaseWasTouched) {
     c.bump_away = k.away;
     c.planner.seed = 7;
     MissionAgent mission(home, c);
+    mission.startFrom(home, 0.0);  // the odometry frame is the map frame
     Pose2 pose = home;
     const double dt = 0.05;
     bool bumped = false;
@@ -135,6 +137,7 @@ TEST(MissionTest, GoesHomeToShareWhenTheFrontiersLeftAreTeammates) {
   c.min_sortie_m = 1.0;
   c.planner.seed = 3;
   MissionAgent mission(home, c);
+  mission.startFrom(home, 0.0);  // the odometry frame is the map frame
   std::vector<Eigen::Vector2d> everywhere;
   for (double x = 0.25; x < 8.0; x += 0.5)
     for (double y = 0.25; y < 6.0; y += 0.5) everywhere.push_back({x, y});
@@ -183,6 +186,7 @@ TEST(MissionTest, TurnsAFullCircleAtAGoalWhoseFrontierItDidNotSee) {
     c.planner.seed = 3;
     c.frontiers.look_again_gain = look_again_gain;
     MissionAgent mission(home, c);
+    mission.startFrom(home, 0.0);  // the odometry frame is the map frame
     Pose2 pose = home;
     const double dt = 0.05;
     double turned = 0.0, longest = 0.0;
@@ -224,6 +228,7 @@ TEST(MissionTest, FrontiersLeftButOutOfReachThisSortieAreTriedAgainNextSortie) {
   c.retry_frontiers = true;
   c.planner.seed = 9;
   MissionAgent mission(home, c);
+  mission.startFrom(home, 0.0);  // the odometry frame is the map frame
   Pose2 pose = home;
   const double dt = 0.05;
   double driving_since = -1.0;
@@ -273,6 +278,7 @@ TEST(MissionTest, SlowsDownForWhatIsNearAhead) {
   c.slow_distance = 1.0;
   c.planner.seed = 4;
   MissionAgent mission(home, c);
+  mission.startFrom(home, 0.0);  // the odometry frame is the map frame
   Pose2 pose = home;
   const double dt = 0.05;
   double slow_max = 0.0, free_max = 0.0;
@@ -310,6 +316,7 @@ TEST(MissionTest, SpeedsUpNoFasterThanItsAccelerationLimitAndStopsAtOnce) {
     c.planner.seed = 4;
     c.max_linear_accel = accel;
     MissionAgent mission(home, c);
+    mission.startFrom(home, 0.0);  // the odometry frame is the map frame
     Pose2 pose = home;
     const double dt = 0.05;
     double previous = 0.0, steepest = 0.0, fastest = 0.0, before_stop = 0.0, at_stop = -1.0;
@@ -354,6 +361,7 @@ std::pair<double, double> pastAnUnmappedWall(double recent_hits_s) {
   c.max_sorties = 1;
   c.recent_hits_s = recent_hits_s;
   MissionAgent mission(home, c);
+  mission.startFrom(home, 0.0);  // the odometry frame is the map frame
   const double wall_x = 4.0, wall_top = 2.5;
   auto toWall = [&](const Eigen::Vector2d& p) {
     return (p - Eigen::Vector2d(wall_x, std::clamp(p.y(), 0.0, wall_top))).norm();

@@ -14,9 +14,9 @@
 
 #include <gtest/gtest.h>
 
-#include "apps/carmen_command.h"
 #include "core/io/atomic_file.h"
 #include "core/mapping/map_metrics.h"
+#include "robots/carmen/carmen_mapping.h"
 
 namespace coopmap {
 namespace {

@@ -8,7 +8,8 @@
 #include <string>
 #include <system_error>
 
-#include "apps/run_world.h"
+#include "sim/runner/world_run.h"
+#include "sim/runner/world_run_outputs.h"
 #include "tests/support/test_world.h"
 
 namespace coopmap::test_support {
@@ -47,11 +48,6 @@ walls:
   - {from: [-1, 2], to: [-1, -2], thickness: 0.1, height: 2.5, texture: poster}
 boxes:
   - {center: [2.5, 0.8], size: [0.6, 0.6, 0.8], yaw_deg: 20, texture: wood}
-home_base:
-  corners:
-    - {position: [3.0, -1.5], heading_deg: 0}
-    - {position: [3.0, -0.7], heading_deg: 0}
-  texture: wood
 )";
 
 // Runs once per test program (the result is kept), in testTempDir().
@@ -68,9 +64,9 @@ inline const RecordedRun& recordedRun() {
     RecordedRun r;
     r.dir = (base / "rec").string();
     r.live_out = (base / "live").string();
-    o.out_dir = r.live_out;
     o.record_dir = r.dir;
     r.live = runWorld(o);
+    writeRunOutputs(r.live_out, r.live);
     return r;
   }();
   return run;

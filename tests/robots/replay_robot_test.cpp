@@ -9,10 +9,10 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
-#include "apps/replay_command.h"
 #include "core/io/atomic_file.h"
 #include "robots/replay/recording_writer.h"
 #include "robots/replay/replay_robot.h"
+#include "sim/runner/replay_run.h"
 #include "tests/robots/recorded_run.h"
 
 namespace coopmap {
@@ -232,10 +232,10 @@ TEST(ReplayTest, RejectsAnIncompleteRecording) {
 
 TEST(ReplayTest, RejectsAnUnknownVersion) {
   const std::string dir = copyOfRecording("version");
-  replaceLine(dir + "/dataset.yaml", 3, "version: 2");
+  replaceLine(dir + "/dataset.yaml", 3, "version: 3");
   EXPECT_EQ(replayError(dir), dir +
-                                  "/dataset.yaml:3:10: version: version 2 is not supported (this "
-                                  "coopmap reads coopmap-recording version 1)");
+                                  "/dataset.yaml:3:10: version: version 3 is not supported (this "
+                                  "coopmap reads coopmap-recording versions 1 to 2)");
 }
 
 TEST(ReplayTest, ReportsABadRobotDescription) {

@@ -76,6 +76,30 @@ TEST_P(RobotInterfaceConformance, FramesHaveTheRigSizeAndIncreasingStamps) {
   }
 }
 
+// A frame's odometry is where the robot was when it was taken: on the way from where the robot
+// was before the capture to where it is after it (a driver that pairs a frame with the pose of
+// another moment puts it off that way).
+TEST_P(RobotInterfaceConformance, FramesCarryTheOdometryOfTheirMoment) {
+  robot().command({0.2, 0.0});
+  driver_.wait(0.3);
+  for (int i = 0; i < GetParam().frames; ++i) {
+    const Pose2 before = robot().odometry();
+    const std::optional<TrinocularFrame> f = robot().captureFrame();
+    const Pose2 after = robot().odometry();
+    if (!f) {
+      driver_.wait(0.1);
+      continue;
+    }
+    const Eigen::Vector2d b = before.translation(), a = after.translation(),
+                          at = f->odometry.translation();
+    EXPECT_LE((at - b).norm() + (a - at).norm(), (a - b).norm() + 0.005)
+        << "frame " << i << " at (" << at.x() << ", " << at.y() << "), the robot went from ("
+        << b.x() << ", " << b.y() << ") to (" << a.x() << ", " << a.y() << ")";
+    driver_.wait(0.1);
+  }
+  robot().command(MotionCommand::stop());
+}
+
 TEST_P(RobotInterfaceConformance, OdometryIsFinite) {
   for (int i = 0; i < GetParam().frames; ++i) {
     const Pose2 p = robot().odometry();

@@ -5,23 +5,17 @@
 // wall_recall is at least 0.95 and its false_occupied_rate at most 0.01, and the home-base
 // protocol beats naive sharing on both.
 //
-// Measured at this head (`coopmap run worlds/lab_corridor.yaml --robots 2 --duration N
-// --seed S`, session 34): over seeds 1-72 at 1800 s, both map bars in all 72 runs, coverage
-// >= 0.90 in 69 (the other three 0.884-0.895, still exploring), no contact, naive beaten on
-// both in 72. The seeds here are three of the 18 that reached 90 % coverage by 900 s, and
-// all meet every bar at 1000 s:
-//   seed 15: wall_recall 0.975, false_occupied_rate 0.0048, coverage 0.964
-//   seed 45: 0.988, 0.0021, 0.998
-//   seed 63: 0.991, 0.0032, 0.997
-// (naive sharing 0.17-0.22 and 0.032-0.052). A change that makes any of them fail has made
-// the building's mapping, exploring or driving worse on a run that met every bar.
+// The seeds are the first three (a rule fixed before their results; the runs take the
+// issue's 1800 s). Over seeds 1-24 at 1800 s with the agent of core/agent/robot_agent.h
+// (`coopmap run worlds/lab_corridor.yaml --robots 2 --duration 1800 --seed S`): both map bars
+// in 23, coverage >= 0.90 in 23, one contact in all.
 #include <cstdint>
 #include <cstdio>
 #include <string>
 
 #include <gtest/gtest.h>
 
-#include "apps/run_world.h"
+#include "sim/runner/world_run.h"
 #include "tests/scenario/run_summary.h"
 
 namespace coopmap {
@@ -35,7 +29,7 @@ TEST_P(BuildingScenarioTest, TwoRobotsMeetTheIssuesBars) {
   o.explore = true;
   o.robots = 2;
   o.seed = GetParam();
-  o.duration = 1000.0;
+  o.duration = 1800.0;
   const RunResult r = runWorld(o);
   ASSERT_TRUE(r.cooperative);
   const SharedMapResult& s = r.shared_map;
@@ -44,7 +38,7 @@ TEST_P(BuildingScenarioTest, TwoRobotsMeetTheIssuesBars) {
   for (const RobotRunResult& robot : r.robots) {
     EXPECT_EQ(robot.collisions, 0) << robot.name << " touched something";
     EXPECT_GE(robot.sorties_posted, 3) << robot.name;
-    for (const std::string& line : robot.sortie_log)
+    for (const std::string& line : robot.log)
       std::printf("  %s %s\n", robot.name.c_str(), line.substr(0, 150).c_str());
   }
   EXPECT_GE(s.protocol.coverage, 0.90);
@@ -54,7 +48,7 @@ TEST_P(BuildingScenarioTest, TwoRobotsMeetTheIssuesBars) {
   EXPECT_LT(s.protocol.false_occupied_rate, s.naive.false_occupied_rate);
 }
 
-INSTANTIATE_TEST_SUITE_P(Seeds, BuildingScenarioTest, testing::Values(15u, 45u, 63u),
+INSTANTIATE_TEST_SUITE_P(Seeds, BuildingScenarioTest, testing::Values(1u, 2u, 3u),
                          [](const testing::TestParamInfo<uint64_t>& info) {
                            return "seed" + std::to_string(info.param);
                          });

@@ -23,7 +23,7 @@
 
 #include <gtest/gtest.h>
 
-#include "apps/run_world.h"
+#include "sim/runner/world_run.h"
 #include "tests/scenario/run_summary.h"
 
 namespace coopmap {
@@ -44,22 +44,22 @@ TEST(CooperativeScenarioTest, TwoRobotsShareOnlyCorrectedSortiesAndBeatNaiveShar
     scenario_test::printSharedMap(seed, r);
     int contacts = 0, self_closed = 0;
     for (const RobotRunResult& robot : r.robots) {
-      for (const std::string& line : robot.sortie_log) {
+      for (const std::string& line : robot.log) {
         std::printf("  %s %s\n", robot.name.c_str(), line.c_str());
         self_closed += line.find("closures within the sortie") != std::string::npos;
       }
       contacts += static_cast<int>(robot.contacts.size());
       EXPECT_GE(robot.sorties_posted, 1) << robot.name << ", seed " << seed;
-      EXPECT_EQ(robot.mission_phase, "done") << robot.name << ", seed " << seed;
+      EXPECT_EQ(robot.phase, "done") << robot.name << ", seed " << seed;
       // Every fix is measured against the truth; the posted ones must be good.
       EXPECT_EQ(robot.fix_errors.size(), static_cast<size_t>(robot.sorties_fixed));
       // Every contact is logged with what was touched.
       EXPECT_EQ(robot.contacts.size(),
                 static_cast<size_t>(robot.collisions_static + robot.collisions_people +
                                     robot.collisions_robots));
-      for (const auto& [m, deg] : robot.fix_errors) {
-        EXPECT_LE(m, 0.03) << robot.name << ", seed " << seed;
-        EXPECT_LE(deg, 0.75) << robot.name << ", seed " << seed;
+      for (const FixError& e : robot.fix_errors) {
+        EXPECT_LE(e.error_m, 0.03) << robot.name << ", seed " << seed;
+        EXPECT_LE(e.error_deg, 0.75) << robot.name << ", seed " << seed;
       }
     }
     // The robots come by again on their way out and back: their sorties close on themselves.

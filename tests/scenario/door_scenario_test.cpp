@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "apps/run_world.h"
+#include "sim/runner/world_run.h"
 #include "sim/world/ground_truth.h"
 #include "sim/world/world.h"
 #include "tests/support/test_world.h"
@@ -25,11 +25,6 @@ walls:
 doors:
   - {center: [2, 0], width: 1.2, yaw_deg: 90, open: false, texture: wood,
      schedule: [{at: 6.0, open: true}]}
-home_base:
-  corners:
-    - {position: [0, 2.5], heading_deg: 0}
-    - {position: [1, 2.5], heading_deg: 0}
-  texture: poster
 )",
                                       route);
 }

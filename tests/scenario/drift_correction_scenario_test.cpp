@@ -13,7 +13,7 @@
 
 #include <gtest/gtest.h>
 
-#include "apps/drift_command.h"
+#include "sim/runner/drift_bench.h"
 
 namespace coopmap {
 namespace {

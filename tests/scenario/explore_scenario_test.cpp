@@ -18,10 +18,11 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
-#include "apps/run_world.h"
 #include "core/agent/cooperation.h"
 #include "core/agent/mission.h"
 #include "core/io/atomic_file.h"
+#include "sim/runner/world_run.h"
+#include "sim/runner/world_run_outputs.h"
 #include "tests/support/test_world.h"
 
 namespace coopmap {
@@ -41,9 +42,9 @@ TEST(ExploreScenarioTest, OneRobotExploresTheLabAndComesHome) {
     const RobotRunResult& jose = r.robots[0];
     std::printf("seed %llu: coverage %.3f wall_recall %.3f collisions %d path %.1f m, %s (%s)\n",
                 static_cast<unsigned long long>(seed), jose.map.coverage, jose.map.wall_recall,
-                jose.collisions, jose.path_length_m, jose.mission_phase.c_str(),
+                jose.collisions, jose.path_length_m, jose.phase.c_str(),
                 jose.mission_event.c_str());
-    EXPECT_EQ(jose.mission_phase, "done") << "seed " << seed;  // it always comes home
+    EXPECT_EQ(jose.phase, "done") << "seed " << seed;  // it always comes home
     EXPECT_LE(jose.collisions, 1) << "seed " << seed;
     if (jose.map.coverage >= 0.9 && jose.map.wall_recall >= 0.9 && jose.collisions == 0 &&
         jose.exploration_complete)
@@ -52,129 +53,45 @@ TEST(ExploreScenarioTest, OneRobotExploresTheLabAndComesHome) {
   EXPECT_GE(good, 3);
 }
 
-TEST(ExploreScenarioTest, TheBuildingsMissionSettingsApplyUnlessTheCommandLineSaysOtherwise) {
+TEST(ExploreScenarioTest, TheWorldsMissionSettingsApplyUnlessTheRunSaysOtherwise) {
   RunOptions o;
   o.world_file = std::string(COOPMAP_SOURCE_DIR) + "/worlds/lab_corridor.yaml";
   o.explore = true;
   o.duration = 2.0;
   RunResult r = runWorld(o);
-  ASSERT_TRUE(r.mission_settings.has_value());
-  EXPECT_EQ(r.mission_settings->first_sortie_budget_m, 10.0);  // worlds/lab_corridor.yaml
-  EXPECT_EQ(r.mission_settings->safety_distance, 0.45);
-  EXPECT_EQ(r.mission_settings->slow_distance, 1.0);
-  EXPECT_EQ(r.mission_settings->fringe_clearance, 0.3);
-  EXPECT_EQ(r.mission_settings->doorway_width, 1.2);
-  EXPECT_TRUE(r.mission_settings->retry_frontiers);
-  EXPECT_EQ(r.mission_settings->floor_edge_depth, 1.5);
-  EXPECT_EQ(r.mission_settings->beyond_support, 3);
-  EXPECT_TRUE(r.mission_settings->shaped_closures);
-  EXPECT_TRUE(r.mission_settings->bump_away);
-  EXPECT_EQ(r.mission_settings->visited_radius, 0.09);
-  EXPECT_EQ(r.mission_settings->max_linear_accel, 0.4);
-  EXPECT_FALSE(r.mission_settings->calibrate_distance_scale);
-  EXPECT_EQ(r.mission_settings->passage_width, 1.2);
-  EXPECT_EQ(r.mission_settings->sortie_budget_m, 40.0);
-  EXPECT_EQ(r.mission_settings->planning_margin, 0.12);
-  EXPECT_EQ(r.mission_settings->preferred_margin, 0.3);
-  EXPECT_EQ(r.mission_settings->closures, "none");
-  EXPECT_FALSE(r.mission_settings->stereo_distance_scale);
-  EXPECT_EQ(r.mission_settings->odometry_distance_scale, 0.0101);  // calibrated from logs
-  EXPECT_EQ(r.robots[0].calibration.distance_scale, 0.0101);       // what the robot drives on
-  EXPECT_EQ(r.mission_settings->post_gate_m, 0.0);
-  EXPECT_EQ(r.mission_settings->recent_hits_s, 4.0);
-  EXPECT_EQ(r.mission_settings->manhattan_sigma_deg, 0.6);
-  EXPECT_EQ(r.mission_settings->wall_heading_gain, 0.5);
-  EXPECT_EQ(r.mission_settings->closure_scans, 18);
-  EXPECT_TRUE(r.mission_settings->closure_seen_points);
-  EXPECT_EQ(r.mission_settings->look_again_gain, 0);
-  o.safety_distance = 0.6;
-  o.recent_hits_s = 5.0;
-  o.passage_width = 0.0;
-  o.calibrate_distance_scale = true;
-  o.bump_away = false;
-  o.retry_frontiers = false;
-  o.floor_edge_depth = 0.0;
-  o.beyond_support = 1;
-  o.max_linear_accel = 0.5;
-  o.doorway_width = 0.0;
-  o.closures = "self";
-  o.stereo_distance_scale = true;
-  o.odometry_distance_scale = 0.0;
-  o.post_gate_m = 0.2;
+  EXPECT_EQ(r.settings.first_sortie_budget_m, 10.0);  // worlds/lab_corridor.yaml
+  EXPECT_EQ(r.settings.safety_distance, 0.45);
+  EXPECT_TRUE(r.settings.retry_frontiers);
+  EXPECT_EQ(r.settings.closures, "none");
+  EXPECT_EQ(r.settings.odometry_distance_scale, 0.0101);      // calibrated from logs
+  EXPECT_EQ(r.robots[0].calibration.distance_scale, 0.0101);  // what the robot drives on
+  EXPECT_EQ(r.settings.closure_scans, 18);
+  EXPECT_EQ(r.settings.sensing_rate, AgentSettings{}.sensing_rate);  // the world says nothing
+  o.settings = [](AgentSettings& s) {
+    s.safety_distance = 0.6;
+    s.closures = "self";
+    s.odometry_distance_scale = 0.0;
+  };
   r = runWorld(o);
-  EXPECT_EQ(r.mission_settings->floor_edge_depth, 0.0);
-  EXPECT_EQ(r.mission_settings->beyond_support, 1);
-  EXPECT_EQ(r.mission_settings->max_linear_accel, 0.5);
-  EXPECT_EQ(r.mission_settings->doorway_width, 0.0);
-  EXPECT_EQ(r.mission_settings->closures, "self");
-  EXPECT_TRUE(r.mission_settings->stereo_distance_scale);
-  EXPECT_EQ(r.mission_settings->odometry_distance_scale, 0.0);
+  EXPECT_EQ(r.settings.safety_distance, 0.6);
+  EXPECT_EQ(r.settings.closures, "self");
   EXPECT_EQ(r.robots[0].calibration.distance_scale, 0.0);
-  EXPECT_EQ(r.mission_settings->post_gate_m, 0.2);
-  EXPECT_TRUE(r.mission_settings->shaped_closures);
-  EXPECT_EQ(r.mission_settings->safety_distance, 0.6);
-  EXPECT_FALSE(r.mission_settings->retry_frontiers);
-  EXPECT_EQ(r.mission_settings->slow_distance, 1.0);
-  EXPECT_FALSE(r.mission_settings->bump_away);
-  EXPECT_EQ(r.mission_settings->visited_radius, 0.09);
-  EXPECT_TRUE(r.mission_settings->calibrate_distance_scale);
-  EXPECT_EQ(r.mission_settings->passage_width, 0.0);
-  EXPECT_EQ(r.mission_settings->recent_hits_s, 5.0);
+  EXPECT_EQ(r.settings.first_sortie_budget_m, 10.0);  // the world's still
   // The lab says nothing: the defaults.
   o = RunOptions{};
   o.world_file = std::string(COOPMAP_SOURCE_DIR) + "/worlds/lab.yaml";
   o.explore = true;
   o.duration = 2.0;
-  r = runWorld(o);
-  ASSERT_TRUE(r.mission_settings.has_value());
-  EXPECT_EQ(r.mission_settings->safety_distance, MissionConfig{}.safety_distance);
-  EXPECT_EQ(r.mission_settings->first_sortie_budget_m, 0.0);
-  EXPECT_EQ(r.mission_settings->floor_edge_depth, 0.0);
-  EXPECT_EQ(r.mission_settings->beyond_support, 1);
-  EXPECT_FALSE(r.mission_settings->shaped_closures);
-  EXPECT_FALSE(r.mission_settings->retry_frontiers);
-  EXPECT_FALSE(r.mission_settings->bump_away);
-  EXPECT_EQ(r.mission_settings->visited_radius, 0.0);
-  EXPECT_EQ(r.mission_settings->max_linear_accel, 0.0);
-  EXPECT_TRUE(r.mission_settings->calibrate_distance_scale);
-  EXPECT_EQ(r.mission_settings->passage_width, 0.0);
-  EXPECT_EQ(r.mission_settings->sortie_budget_m, 25.0);
-  EXPECT_EQ(r.mission_settings->planning_margin, 0.05);
-  EXPECT_EQ(r.mission_settings->preferred_margin, 0.0);
-  EXPECT_EQ(r.mission_settings->closures, "self");
-  EXPECT_EQ(r.mission_settings->post_gate_m, 0.0);
-  EXPECT_EQ(r.mission_settings->manhattan_sigma_deg, 0.0);
-  EXPECT_EQ(r.mission_settings->wall_heading_gain, 0.0);
-  EXPECT_EQ(r.mission_settings->closure_scans, CooperationConfig{}.closure_scans);
-  EXPECT_FALSE(r.mission_settings->closure_seen_points);
-  EXPECT_FALSE(r.mission_settings->closure_decided_points);
-  EXPECT_FALSE(r.mission_settings->stereo_distance_scale);
-  EXPECT_EQ(r.mission_settings->look_again_gain, 0);
-  o.planning_margin = 0.3;
-  o.preferred_margin = 0.25;
-  o.closures = "none";
-  o.post_gate_m = 0.3;
-  o.manhattan_sigma_deg = 0.6;
-  o.wall_heading_gain = 0.3;
-  o.closure_scans = 12;
-  o.closure_seen_points = true;
-  o.closure_decided_points = true;
-  o.stereo_distance_scale = true;
-  o.look_again_gain = 40;
-  r = runWorld(o);
-  EXPECT_EQ(r.mission_settings->planning_margin, 0.3);
-  EXPECT_EQ(r.mission_settings->preferred_margin, 0.25);
-  EXPECT_EQ(r.mission_settings->closures, "none");
-  EXPECT_EQ(r.mission_settings->post_gate_m, 0.3);
-  EXPECT_EQ(r.mission_settings->manhattan_sigma_deg, 0.6);
-  EXPECT_EQ(r.mission_settings->wall_heading_gain, 0.3);
-  EXPECT_EQ(r.mission_settings->closure_scans, 12);
-  EXPECT_TRUE(r.mission_settings->closure_seen_points);
-  EXPECT_TRUE(r.mission_settings->closure_decided_points);
-  EXPECT_TRUE(r.mission_settings->stereo_distance_scale);
-  EXPECT_EQ(r.mission_settings->look_again_gain, 40);
-  o.closures = "some";
-  EXPECT_THROW(runWorld(o), std::invalid_argument);
+  EXPECT_EQ(runWorld(o).settings, AgentSettings{});
+  o.settings = [](AgentSettings& s) { s.closures = "some"; };
+  try {
+    runWorld(o);
+    ADD_FAILURE() << "a bad setting was taken";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("'closures': expected one of none, self, shared or both"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 // One robot exploring the building (seed 1) for `duration` seconds.
@@ -208,11 +125,13 @@ TEST(ExploreScenarioTest, TheBuildingsCamerasMeasureTheEncodersDistanceScale) {
   for (const uint32_t seed : seeds) {
     RunOptions o = buildingExplorer(1000.0);
     o.seed = seed;
-    o.stereo_distance_scale = true;
-    o.odometry_distance_scale = 0.0;
-    o.max_linear_accel = 0.0;
+    o.settings = [](AgentSettings& s) {
+      s.stereo_distance_scale = true;
+      s.odometry_distance_scale = 0.0;
+      s.max_linear_accel = 0.0;
+    };
     const RunResult r = runWorld(o);
-    ASSERT_TRUE(r.mission_settings->stereo_distance_scale);
+    ASSERT_TRUE(r.settings.stereo_distance_scale);
     const RobotRunResult& robot = r.robots[0];
     ASSERT_EQ(robot.odometry.size(), robot.groundtruth.size());
     double odometry = 0.0, truth = 0.0;
@@ -250,8 +169,8 @@ TEST(ExploreScenarioTest, TheBuildingsWallsKeepTheEstimatesHeading) {
   };
   RunOptions o = buildingExplorer(200.0);
   const RunResult with = runWorld(o);
-  ASSERT_EQ(with.mission_settings->wall_heading_gain, 0.5);
-  o.wall_heading_gain = 0.0;
+  ASSERT_EQ(with.settings.wall_heading_gain, 0.5);
+  o.settings = [](AgentSettings& s) { s.wall_heading_gain = 0.0; };
   const RunResult without = runWorld(o);
   ASSERT_EQ(with.robots[0].estimate.size(), with.robots[0].groundtruth.size());
   ASSERT_EQ(without.robots[0].estimate.size(), without.robots[0].groundtruth.size());
@@ -276,9 +195,10 @@ TEST(ExploreScenarioTest, TheBuildingsWallsHoldEverySortiesCorrectedHeading) {
   RunOptions o = buildingExplorer(850.0);
   o.robots = 2;
   o.seed = 2;
-  o.out_dir = testing::TempDir() + "/coopmap_building_headings";
-  std::filesystem::remove_all(o.out_dir);
+  const std::string out = testing::TempDir() + "/coopmap_building_headings";
+  std::filesystem::remove_all(out);
   const RunResult r = runWorld(o);
+  writeRunOutputs(out, r);
   for (const RobotRunResult& robot : r.robots) {
     double sum2 = 0.0;
     size_t n = 0;
@@ -307,14 +227,14 @@ TEST(ExploreScenarioTest, TheBuildingsWallsHoldEverySortiesCorrectedHeading) {
               shared.imported.wall_recall, shared.imported.false_occupied_rate);
   EXPECT_LT(shared.protocol.false_occupied_rate, 0.8 * shared.imported.false_occupied_rate);
   EXPECT_GT(shared.protocol.wall_recall, shared.imported.wall_recall - 0.02);
-  const std::string metrics = readFile(o.out_dir + "/metrics.json");
+  const std::string metrics = readFile(out + "/metrics.json");
   for (const char* key : {"\"published_band\": 0.5", "\"imported\""})
     EXPECT_NE(metrics.find(key), std::string::npos) << key;
 }
 
 // The building with a screen (a panel, written as a scheduled door) standing in the lab
-// between the start and the home base from 100 s to 142 s: seed 1's one robot first comes
-// home at 136 s (measured without the screen) and looks at the home base with it there.
+// between the start and the home base from 80 s to 122 s: seed 1's one robot first comes
+// home at 116 s (measured without the screen) and looks at the home base with it there.
 RunResult runWithScreen(double x, double width) {
   std::string yaml = readFile(std::string(COOPMAP_SOURCE_DIR) + "/worlds/lab_corridor.yaml");
   const auto replace = [&](const std::string& from, const std::string& to) {
@@ -325,7 +245,7 @@ RunResult runWithScreen(double x, double width) {
   char screen[200];
   std::snprintf(screen, sizeof screen,
                 "doors:\n  - {center: [%.2f, 1.5], width: %.2f, yaw_deg: 90, open: true, texture: "
-                "poster, schedule: [{at: 100, open: false}, {at: 142, open: true}]}\n",
+                "poster, schedule: [{at: 80, open: false}, {at: 122, open: true}]}\n",
                 x, width);
   replace("doors:\n", screen);
   for (int i = 0; i < 2; ++i)
@@ -337,24 +257,23 @@ RunResult runWithScreen(double x, double width) {
   writeFileAtomic(world.path(), yaml);
   RunOptions o = buildingExplorer(300.0);
   o.world_file = world.path();
-  // The screen's schedule is timed to this run's first look (136 s), with the base's own
+  // The screen's schedule is timed to this run's first look (116 s), with the base's own
   // acceleration; with the building's gentle starts (max_linear_accel) the first sortie
   // ends at 222 s, the screen long gone.
-  o.max_linear_accel = 0.0;
+  o.settings = [](AgentSettings& s) { s.max_linear_accel = 0.0; };
   RunResult r = runWorld(o);
-  for (const std::string& line : r.robots[0].sortie_log)
-    std::printf("%s\n", line.substr(0, 200).c_str());
+  for (const std::string& line : r.robots[0].log) std::printf("%s\n", line.substr(0, 200).c_str());
   return r;
 }
 
 // What a test of the looks needs of a run: the robot came home once, every fix it took is
 // near the truth, and it touched nothing.
 void expectSortieOneFixed(const RobotRunResult& robot) {
-  EXPECT_NE(robot.mission_phase, "done") << robot.mission_event;
+  EXPECT_NE(robot.phase, "done") << robot.mission_event;
   EXPECT_GE(robot.sorties_fixed, 1);
-  for (const auto& [m, deg] : robot.fix_errors) {
-    EXPECT_LT(m, 0.05);
-    EXPECT_LT(deg, 1.0);
+  for (const FixError& e : robot.fix_errors) {
+    EXPECT_LT(e.error_m, 0.05);
+    EXPECT_LT(e.error_deg, 1.0);
   }
   EXPECT_EQ(robot.collisions, 0);
 }
@@ -367,9 +286,10 @@ void expectSortieOneFixed(const RobotRunResult& robot) {
 // then) had fitted the home base 1.23 m away, and the look after driving there disagreed.
 TEST(ExploreScenarioTest, ALookAtTheHomeBaseWithoutAFixIsTakenAgain) {
   const RunResult r = runWithScreen(2.5, 2.4);
-  const std::vector<std::string>& log = r.robots[0].sortie_log;
+  // After the line of its placing at the start.
+  const std::vector<std::string> log(r.robots[0].log.begin() + 1, r.robots[0].log.end());
   ASSERT_GE(log.size(), 2u);
-  EXPECT_NE(log[0].find("no fix from the look at 136 s: looking again (1 of 2"), std::string::npos)
+  EXPECT_NE(log[0].find("no fix from the look at 116 s: looking again (1 of 2"), std::string::npos)
       << "the screen no longer hides the home base at the first look";
   double off = -1.0;  // m from the start, by the second look's first fix
   if (std::sscanf(log[1].c_str(), "back %lf m from the start", &off) != 1)
@@ -387,7 +307,7 @@ TEST(ExploreScenarioTest, ALookAtTheHomeBaseWithoutAFixIsTakenAgain) {
 // trusted fix).
 TEST(ExploreScenarioTest, TwoLooksThatDisagreeAreTakenAgain) {
   const RunResult r = runWithScreen(2.3, 1.0);
-  const std::vector<std::string>& log = r.robots[0].sortie_log;
+  const std::vector<std::string>& log = r.robots[0].log;
   bool disagreed = false;
   for (const std::string& line : log)
     disagreed |= line.find("no trusted fix from the look") != std::string::npos &&
@@ -406,20 +326,19 @@ walls:
   - {from: [3.8, -3], to: [3.8, 3], thickness: 0.1, height: 2.5, texture: poster}
 home_base:
   corners:
-    - {position: [0, 2.5], heading_deg: 0}
-    - {position: [1, 2.5], heading_deg: 0}
+    - {position: [2.0, -0.7], heading_deg: 180}
+    - {position: [2.0, 0.7], heading_deg: 180}
   texture: poster
 )");
   o.world_file = world.path();
   o.explore = true;
   o.duration = 1.0;
   RunResult r = runWorld(o);
-  ASSERT_TRUE(r.mission_settings.has_value());
-  EXPECT_EQ(r.mission_settings->sortie_budget_m, 12.0);
-  o.sortie_budget_m = 30.0;
+  EXPECT_EQ(r.settings.sortie_budget_m, 12.0);
+  o.settings = [](AgentSettings& s) { s.sortie_budget_m = 30.0; };
   r = runWorld(o);
-  EXPECT_EQ(r.mission_settings->sortie_budget_m, 30.0);
-  o.sortie_budget_m = -1.0;
+  EXPECT_EQ(r.settings.sortie_budget_m, 30.0);
+  o.settings = [](AgentSettings& s) { s.sortie_budget_m = -1.0; };
   EXPECT_THROW(runWorld(o), std::invalid_argument);
 }
 

@@ -6,7 +6,8 @@
 
 #include <gtest/gtest.h>
 
-#include "apps/run_world.h"
+#include "sim/runner/world_run.h"
+#include "sim/runner/world_run_outputs.h"
 
 namespace coopmap {
 namespace {
@@ -26,11 +27,11 @@ TEST(LabScenarioTest, OneRobotPerfectOdometryMapsTheLab) {
   std::filesystem::remove_all(out);
   RunOptions o;
   o.world_file = kLab;
-  o.out_dir = out;
   o.seed = 1;
   o.robots = 1;
   o.odometry = "perfect";
   const RunResult r = runWorld(o);
+  writeRunOutputs(out, r);
   ASSERT_EQ(r.robots.size(), 1u);
   const RobotRunResult& jose = r.robots[0];
   EXPECT_EQ(jose.name, "jose");
@@ -58,6 +59,19 @@ TEST(LabScenarioTest, OneRobotPerfectOdometryMapsTheLab) {
   EXPECT_NE(yaml.find("image: map_jose.pgm"), std::string::npos);
   EXPECT_NE(yaml.find("resolution: 0.050000"), std::string::npos);
   EXPECT_EQ(slurp(out + "/map_jose.pgm").rfind("P5\n", 0), 0u);
+  // The odometry starts at the origin, as encoders do; the map frame is the home base's.
+  EXPECT_EQ(jose.odometry.front().pose.x, 0.0);
+  EXPECT_EQ(jose.odometry.front().pose.y, 0.0);
+  EXPECT_EQ(jose.odometry.front().pose.theta, 0.0);
+  std::istringstream tum(slurp(out + "/trajectory_jose_odometry.tum"));
+  std::string line;
+  while (std::getline(tum, line) && line.rfind("#", 0) == 0) {
+  }
+  double stamp = -1, x = -1, y = -1, z = -1;
+  std::istringstream(line) >> stamp >> x >> y >> z;
+  EXPECT_EQ(x, 0.0) << line;
+  EXPECT_EQ(y, 0.0) << line;
+  EXPECT_TRUE(jose.placed) << "its first look at the home base placed it in the map frame";
   // No temp files left behind.
   for (const auto& e : std::filesystem::directory_iterator(out))
     EXPECT_EQ(e.path().string().find(".tmp."), std::string::npos) << e.path();
@@ -69,7 +83,7 @@ TEST(LabScenarioTest, SameSeedSameRunDifferentSeedDifferentDrift) {
     o.world_file = kLab;
     o.seed = seed;
     o.robots = 1;
-    o.duration = 30.0;
+    o.duration = 60.0;
     o.odometry = "drifting";
     return runWorld(o);
   };

@@ -6,28 +6,26 @@
 
 #include <gtest/gtest.h>
 
-#include "apps/run_world.h"
 #include "core/correction/home_return.h"
+#include "sim/runner/world_run.h"
 #include "tests/support/test_world.h"
 
 namespace coopmap {
 namespace {
 
 // A wall 3.8 m ahead of the robot; `people` is the world's people list, `more_robots` robots
-// besides r (YAML list items).
+// besides r (YAML list items), `more` more of the world. Without a home base, the robot maps
+// in its own start frame (the world's here).
 test_support::TestWorldFile writeWorld(const std::string& people,
-                                       const std::string& more_robots = "") {
+                                       const std::string& more_robots = "",
+                                       const std::string& more = "",
+                                       const std::string& route = "") {
   return test_support::writeTestWorld("crossing",
                                       R"(floor: {min: [-1, -4], max: [4, 4], texture: carpet}
 walls:
   - {from: [3.8, -4], to: [3.8, 4], thickness: 0.1, height: 2.5, texture: poster}
-home_base:
-  corners:
-    - {position: [0, 3.5], heading_deg: 0}
-    - {position: [1, 3.5], heading_deg: 0}
-  texture: poster
-)" + people,
-                                      "", more_robots);
+)" + more + people,
+                                      route, more_robots);
 }
 
 TEST(PeopleScenarioTest, PersonCrossingShowsThenLeavesNoObstacle) {
@@ -69,30 +67,43 @@ TEST(PeopleScenarioTest, PersonCrossingShowsThenLeavesNoObstacle) {
 }
 
 TEST(PeopleScenarioTest, ATeammateIsNotLoggedWhereItReportsItself) {
-  // r stands facing a teammate 2 m ahead that stands still too, the wall beyond. Unmasked,
-  // the teammate is an obstacle in what r logs (and would post); masked where it reports
-  // itself (perfect odometry: where it is), it is not, and the wall beside it still is. r's
-  // own map, which it drives by, shows the teammate either way.
-  const test_support::TestWorldFile world = writeWorld(
-      "", "  - name: mate\n    model: " + std::string(COOPMAP_SOURCE_DIR) +
-              "/robots/b14/b14.yaml\n    start: {position: [2.0, 0.0], heading_deg: 0}\n");
+  // r stands facing a teammate 2 m ahead that stands still too, the wall beyond; both look at
+  // the home base beside them first (which places them in its frame), and stay. Unmasked, the
+  // teammate is an obstacle in what r logs (and would post); masked where it reports itself
+  // (perfect odometry: where it is), it is not, and the wall beside it still is, also in what
+  // r logged before the teammate was placed. r's own map, which it drives by, shows the
+  // teammate either way.
+  const test_support::TestWorldFile world =
+      writeWorld("",
+                 "  - name: mate\n    model: " + std::string(COOPMAP_SOURCE_DIR) +
+                     "/robots/b14/b14.yaml\n    start: {position: [2.0, 0.0], heading_deg: 0}\n"
+                     "    route: [[2.0, 0.0]]\n",
+                 R"(home_base:
+  corners:
+    - {position: [1.7, 2.5], heading_deg: -90}
+    - {position: [0.3, 2.5], heading_deg: -90}
+  texture: poster
+)",
+                 "[0.0, 0.0]");
   for (const double mask : {0.0, 0.5}) {
     RunOptions o;
     o.world_file = world.path();
     o.robots = 2;
-    o.duration = 4.0;
+    o.duration = 40.0;
     o.odometry = "perfect";
-    o.teammate_mask_m = mask;
+    o.settings = [mask](AgentSettings& s) { s.teammate_mask_m = mask; };
     const RunResult r = runWorld(o);
     ASSERT_EQ(r.robots.size(), 2u);
     ASSERT_TRUE(r.robots[0].grid.has_value());
-    auto count = [](const OccupancyGrid& map, int& on_mate, int& on_wall) {
+    ASSERT_TRUE(r.robots[0].placed && r.robots[1].placed);
+    const Pose2 X_WM = r.robots[0].map_in_world;
+    auto count = [&X_WM](const OccupancyGrid& map, int& on_mate, int& on_wall) {
       const MapLimits& lim = map.limits();
       on_mate = on_wall = 0;
       for (int iy = 0; iy < lim.height; ++iy)
         for (int ix = 0; ix < lim.width; ++ix) {
           if (map.state(ix, iy) != CellState::kOccupied) continue;
-          const Eigen::Vector2d c = lim.cellCenter(ix, iy);
+          const Eigen::Vector2d c = X_WM * lim.cellCenter(ix, iy);
           on_mate += (c - Eigen::Vector2d(2.0, 0.0)).norm() < 0.35;
           on_wall += std::abs(c.x() - 3.8) < 0.15 && std::abs(c.y()) > 0.6;
         }

@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <cstdio>
 
-#include "apps/run_world.h"
+#include "sim/runner/world_run.h"
 
 namespace coopmap::scenario_test {
 

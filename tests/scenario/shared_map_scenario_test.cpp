@@ -12,7 +12,7 @@
 
 #include <gtest/gtest.h>
 
-#include "apps/run_world.h"
+#include "sim/runner/world_run.h"
 
 namespace coopmap {
 namespace {

@@ -5,8 +5,8 @@
 
 #include <gtest/gtest.h>
 
-#include "apps/run_world.h"
 #include "robots/robot_model.h"
+#include "sim/runner/world_run.h"
 #include "tests/support/test_world.h"
 
 namespace coopmap {
@@ -18,11 +18,6 @@ test_support::TestWorldFile squareWorld(int laps) {
   return test_support::writeTestWorld("square_" + std::to_string(laps),
                                       R"(floor: {min: [-2, -2], max: [4, 4], texture: carpet}
 walls: []
-home_base:
-  corners:
-    - {position: [3.5, 3.0], heading_deg: 0}
-    - {position: [3.5, 3.8], heading_deg: 0}
-  texture: carpet
 )",
                                       route);
 }

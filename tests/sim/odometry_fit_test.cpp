@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "apps/odometry_fit_command.h"
+#include "sim/runner/odometry_fit.h"
 
 namespace coopmap {
 namespace {
