@@ -98,6 +98,7 @@ void Mapper::maskTeammates(RadialMap& scan, const Pose2& pose) {
             along - std::sqrt(std::max(0.0, teammate_radius_ * teammate_radius_ - across2));
         r.range = std::clamp(enter, 0.0, r.range);
         r.kind = r.range > 0.0 ? RadialKind::kBeyond : RadialKind::kNone;
+        r.floor_edge = false;
         ++masked_;
         break;
       }

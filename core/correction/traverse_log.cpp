@@ -76,8 +76,8 @@ std::string encodeTraverseLog(const TraverseLog& log) {
       p.put(r.range);
       p.put(r.sigma);
       p.put(r.disparity);
-      p.put(
-          static_cast<uint8_t>(static_cast<uint8_t>(r.kind) | (r.floor_edge ? kFloorEdgeBit : 0)));
+      p.put(static_cast<uint8_t>(static_cast<uint8_t>(r.kind) |
+                                 (r.floor_edge && r.kind == RadialKind::kHit ? kFloorEdgeBit : 0)));
     }
     Writer rec;
     rec.put(kRecordMagic);

@@ -150,6 +150,7 @@ int removeSpikes(RadialMap& map, double spike_ratio) {
     const double near = std::min(ra, rc);
     if (b.range < near * (1.0 - spike_ratio)) {
       rs[i].kind = RadialKind::kNone;
+      rs[i].floor_edge = false;
       ++removed;
     }
   }

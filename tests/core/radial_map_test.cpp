@@ -160,6 +160,22 @@ TEST(RadialMapTest, SpikeBetweenAgreeingNeighboursIsRemoved) {
   }
 }
 
+// A spike that was a hit where the floor's view ends is no hit, and no floor's end, once
+// removed.
+TEST(RadialMapTest, ARemovedSpikeIsNoFloorEdge) {
+  RadialMap m;
+  for (int i = 0; i < 3; ++i) {
+    RadialReading r;
+    r.kind = RadialKind::kHit;
+    r.range = i == 1 ? 0.5 : 2.0;
+    r.floor_edge = i == 1;
+    m.readings.push_back(r);
+  }
+  EXPECT_EQ(removeSpikes(m, 0.3), 1);
+  EXPECT_EQ(m.readings[1].kind, RadialKind::kNone);
+  EXPECT_FALSE(m.readings[1].floor_edge);
+}
+
 // Stereo to radial map: a textured box 1 m away (disparity 8) in front of a weakly textured
 // background 8 m away (beyond range). Centred SAD windows give the background beside the
 // box's vertical edges the box's disparity over the whole band, and the radial map then

@@ -73,6 +73,22 @@ TEST(TraverseLogTest, RoundTripIsExact) {
   EXPECT_TRUE(back.entries[0].scan.readings[4].floor_edge);
 }
 
+// The floor's-end mark belongs to hits: a reading made something else (a teammate masked
+// out, a spike removed) is written without it, so the log reads back (it used to be written
+// as kind 128 or 130, which no reader takes).
+TEST(TraverseLogTest, OnlyHitsCarryTheFloorEdgeMark) {
+  TraverseLog log = sampleLog();
+  RadialReading& r = log.entries[0].scan.readings[4];
+  r.kind = RadialKind::kBeyond;  // floor_edge left set
+  RadialReading& none = log.entries[1].scan.readings[4];
+  none.kind = RadialKind::kNone;
+  const TraverseLog back = decodeTraverseLog(encodeTraverseLog(log), "memory");
+  EXPECT_EQ(back.entries[0].scan.readings[4].kind, RadialKind::kBeyond);
+  EXPECT_FALSE(back.entries[0].scan.readings[4].floor_edge);
+  EXPECT_EQ(back.entries[1].scan.readings[4].kind, RadialKind::kNone);
+  EXPECT_FALSE(back.entries[1].scan.readings[4].floor_edge);
+}
+
 TEST(TraverseLogTest, ReadsVersionOneLogs) {
   // Version 1 had no floor-edge bit: the same bytes with version 1 in the header (and its
   // checksum made again) read back alike, every reading off the floor's end.
