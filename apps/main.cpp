@@ -2,6 +2,7 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -42,10 +43,10 @@ int main(int argc, char** argv) {
   int robots = 0;
   auto* cmd_run = app.add_subcommand(
       "run",
-      "Run a world headless: each robot follows its scripted route, builds an occupancy "
-      "grid from trinocular stereo, and the maps (map_<robot>.pgm/.yaml/.png), "
-      "trajectories (trajectory_<robot>_{groundtruth,odometry}.tum) and metrics.json "
-      "are written to --out.");
+      "Run a world headless: each robot's agent finds its start from the home base, follows "
+      "its scripted route or explores in sorties, maps from trinocular stereo, and shares "
+      "its corrected sorties; maps, trajectories, traverse logs, metrics.json and a report "
+      "are written to --out (docs/formats.md).");
   cmd_run->add_option("world", run.world_file, "World file (YAML), e.g. worlds/lab.yaml")
       ->required()
       ->check(CLI::ExistingFile);
@@ -78,8 +79,15 @@ int main(int argc, char** argv) {
                  "Follow the scripted routes of the world file (the default unless the world "
                  "says 'mission: explore')")
       ->excludes("--explore");
-  // The agents' settings, each as --kebab-case-name VALUE (core/agent/agent_settings.h):
-  // over the world's `mission:` block, over coopmap's defaults.
+  // The agents' settings (core/agent/agent_settings.h): a settings file, then each as
+  // --kebab-case-name VALUE, over the robot model's odometry calibration and coopmap's
+  // defaults.
+  std::string settings_file;
+  cmd_run
+      ->add_option("--settings", settings_file,
+                   "A YAML file of the agents' settings (`name: value` per line, the names of "
+                   "the flags below in snake_case); flags given too go over it")
+      ->check(CLI::ExistingFile);
   std::vector<std::pair<std::string, std::string>> setting_values;
   for (const coopmap::SettingInfo& info : coopmap::agentSettingInfos()) {
     const std::string name = info.name;
@@ -106,6 +114,18 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.05, 2.0));
   bool quiet = false;
   cmd_run->add_flag("--quiet", quiet, "No progress bar");
+  bool events = false;
+  cmd_run->add_flag("--events", events,
+                    "Print each robot's mission events as they happen (simulated time, robot, "
+                    "what it decided)");
+
+  bool settings_markdown = false;
+  auto* cmd_settings = app.add_subcommand(
+      "settings",
+      "The agents' settings with their defaults, as a settings file for `run --settings` (or, "
+      "with --markdown, the reference docs/settings.md)");
+  cmd_settings->add_flag("--markdown", settings_markdown,
+                         "A Markdown table of every setting: flag, default, range and help");
 
   coopmap::ReplayOptions replay;
   auto* cmd_replay = app.add_subcommand(
@@ -540,6 +560,10 @@ int main(int argc, char** argv) {
             r.score.valid, r.score.evaluated);
       }
     }
+    if (cmd_settings->parsed())
+      std::fputs(settings_markdown ? coopmap::agentSettingsMarkdown().c_str()
+                                   : coopmap::agentSettingsYaml(coopmap::AgentSettings{}).c_str(),
+                 stdout);
     if (cmd_replay->parsed()) {
       const coopmap::ReplayResult r = coopmap::runReplay(replay);
       for (const auto& robot : r.robots)
@@ -552,14 +576,22 @@ int main(int argc, char** argv) {
       if (explore_flag) run.explore = true;
       if (routes_flag) run.explore = false;
       // Checked before the run, so that a bad value costs no simulation.
+      std::optional<coopmap::YamlField> file_settings;
+      if (!settings_file.empty()) file_settings = coopmap::YamlField::loadFile(settings_file);
       coopmap::AgentSettings check;
+      if (file_settings) coopmap::readAgentSettings(*file_settings, check);
       for (const auto& [name, value] : setting_values) coopmap::setAgentSetting(check, name, value);
-      run.settings = [&setting_values](coopmap::AgentSettings& s) {
+      run.settings = [&setting_values, &file_settings](coopmap::AgentSettings& s) {
+        if (file_settings) coopmap::readAgentSettings(*file_settings, s);
         for (const auto& [name, value] : setting_values) coopmap::setAgentSetting(s, name, value);
       };
       if (robots > 0) run.robots = robots;
       if (!odometry.empty()) run.odometry = odometry;
-      run.progress = !quiet;
+      run.progress = !quiet && !events;
+      if (events)
+        run.event_observer = [](const std::string& robot, double t, const std::string& event) {
+          std::printf("%.1f s %s: %s\n", t, robot.c_str(), event.c_str());
+        };
       run.share_maps = true;
       const coopmap::RunResult r = coopmap::runWorld(run);
       coopmap::writeRunOutputs(run_out, r);

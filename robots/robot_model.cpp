@@ -11,7 +11,7 @@ namespace coopmap {
 namespace {
 sim::OdometryConfig parseOdometry(const YamlField& odo) {
   odo.allowOnly({"preset", "scale_error", "turn_scale_error", "heading_drift", "linear_noise",
-                 "angular_noise", "heading_noise", "source"});
+                 "angular_noise", "heading_noise", "source", "calibrated_distance_scale"});
   sim::OdometryConfig o;
   o.perfect = odo.has("preset") && odo["preset"].asEnum({"perfect", "drifting"}) == "perfect";
   o.scale_error = optionalDouble(odo, "scale_error", 0.0, -0.49, 0.49, "a fraction in (-0.5, 0.5)");
@@ -22,6 +22,11 @@ sim::OdometryConfig parseOdometry(const YamlField& odo) {
   o.angular_noise = optionalDouble(odo, "angular_noise", 0.0, 0.0, 0.99, "a number in [0, 1)");
   o.heading_noise = optionalDouble(odo, "heading_noise", 0.0, 0.0, 0.99, "a number in [0, 1)");
   return o;
+}
+
+double parseCalibration(const YamlField& odo) {
+  return optionalDouble(odo, "calibrated_distance_scale", 0.0, -0.49, 0.49,
+                        "a fraction in (-0.5, 0.5)");
 }
 }  // namespace
 
@@ -80,16 +85,21 @@ RobotModel parseRobotModel(const std::string& text, const std::string& file) {
         optionalDouble(*sim, "mass", m.drive.mass, 1.0, 1000.0, "a mass in [1, 1000] kg");
     m.drive.traction_mu = optionalDouble(*sim, "traction_mu", m.drive.traction_mu, 0.01, 3.0,
                                          "a friction coefficient in [0.01, 3]");
-    if (const auto odo = sim->get("odometry")) m.odometry = parseOdometry(*odo);
+    if (const auto odo = sim->get("odometry")) {
+      m.odometry = parseOdometry(*odo);
+      m.calibrated_distance_scale["default"] = parseCalibration(*odo);
+    }
     m.odometry_presets["default"] = m.odometry;
     if (const auto presets = sim->get("odometry_presets"))
       for (const std::string& name : presets->keys()) {
         if (name == "perfect" || name == "drifting" || name == "default")
           (*presets)[name].failMessage("'" + name + "' is a reserved preset name");
         m.odometry_presets[name] = parseOdometry((*presets)[name]);
+        m.calibrated_distance_scale[name] = parseCalibration((*presets)[name]);
       }
   }
   m.odometry_presets.emplace("default", m.odometry);
+  m.calibrated_distance_scale.emplace("default", 0.0);
   return m;
 }
 

@@ -179,4 +179,30 @@ std::string agentSettingsYaml(const AgentSettings& settings, int indent) {
   return out;
 }
 
+std::string agentSettingsMarkdown() {
+  std::string out =
+      "# Agent settings\n\n"
+      "Generated from the table in `core/agent/agent_settings.h` by `coopmap settings "
+      "--markdown`; a test fails when this file is stale. In YAML (`coopmap run --settings "
+      "FILE`, a robot config's `mission:` -> `settings:`) a setting is `name: value`; on "
+      "`coopmap run`'s command line `--name-in-kebab-case VALUE`.\n\n"
+      "| setting | flag | default | allowed | what it does |\n"
+      "|---|---|---|---|---|\n";
+  AgentSettings().visit([&](const SettingInfo& info, const auto& value) {
+    using T = std::decay_t<decltype(value)>;
+    std::string shown;
+    if constexpr (std::is_same_v<T, bool>)
+      shown = value ? "true" : "false";
+    else if constexpr (std::is_same_v<T, std::string>)
+      shown = value;
+    else if constexpr (std::is_same_v<T, int>)
+      shown = std::to_string(value);
+    else
+      shown = number(value) + (*info.unit ? std::string(" ") + info.unit : "");
+    out += "| `" + std::string(info.name) + "` | `" + settingFlag(info.name) + "` | " + shown +
+           " | " + expected<T>(info) + " | " + info.help + " |\n";
+  });
+  return out;
+}
+
 }  // namespace coopmap

@@ -24,47 +24,47 @@ struct SettingInfo {
 
 struct AgentSettings {
   // What takes a robot out and brings it home.
-  double sortie_budget_m = 25.0;
-  double first_sortie_budget_m = 0.0;
+  double sortie_budget_m = 40.0;
+  double first_sortie_budget_m = 10.0;
   double sortie_budget_s = 400.0;
   int max_sorties = 12;
   // Safety.
-  double safety_distance = 0.30;
-  double slow_distance = 0.0;
-  double max_linear_accel = 0.0;
-  bool bump_away = false;
+  double safety_distance = 0.45;
+  double slow_distance = 1.0;
+  double max_linear_accel = 0.4;
+  bool bump_away = true;
   // Exploration.
-  double fringe_clearance = 0.0;
+  double fringe_clearance = 0.3;
   double goal_clearance = 0.0;
-  double doorway_width = 0.0;
-  bool retry_frontiers = false;
+  double doorway_width = 1.2;
+  bool retry_frontiers = true;
   int look_again_gain = 0;
-  double visited_radius = 0.0;
-  double recent_hits_s = 0.0;
-  double planning_margin = 0.05;
-  double preferred_margin = 0.0;
+  double visited_radius = 0.09;
+  double recent_hits_s = 4.0;
+  double planning_margin = 0.12;
+  double preferred_margin = 0.3;
   // Teammates.
   bool coordinate = true;
-  double passage_width = 0.0;
+  double passage_width = 1.2;
   double teammate_mask_m = 0.8;
   // Perception.
   double sensing_rate = 3.0;
-  double floor_edge_depth = 0.0;
-  int beyond_support = 1;
+  double floor_edge_depth = 1.5;
+  int beyond_support = 3;
   // Localization, correction and sharing.
   double reapproach_m = 0.1;
-  std::string closures = "self";
-  bool shaped_closures = false;
-  bool closure_seen_points = false;
+  std::string closures = "none";
+  bool shaped_closures = true;
+  bool closure_seen_points = true;
   bool closure_decided_points = false;
-  int closure_scans = 6;
+  int closure_scans = 18;
   double post_gate_m = 0.0;
-  double manhattan_sigma_deg = 0.0;
-  double wall_heading_gain = 0.0;
+  double manhattan_sigma_deg = 0.6;
+  double wall_heading_gain = 0.5;
   bool track_shared_map = false;
   // Odometry calibration.
   bool calibrate_odometry = true;
-  bool calibrate_distance_scale = true;
+  bool calibrate_distance_scale = false;
   bool stereo_distance_scale = false;
   double odometry_distance_scale = 0.0;
 
@@ -101,6 +101,9 @@ void setAgentSetting(AgentSettings& settings, const std::string& name, const std
 std::string agentSettingsYaml(const AgentSettings& settings, int indent = 0);
 // "--kebab-case" for a snake_case name.
 std::string settingFlag(const std::string& name);
+// The reference of every setting (docs/settings.md): a Markdown table of names, flags,
+// defaults, ranges and help.
+std::string agentSettingsMarkdown();
 
 template <typename Self, typename Visitor>
 void AgentSettings::visitAll(Self& s, Visitor&& v) {

@@ -173,9 +173,9 @@ HomeBaseCooperation::Located HomeBaseCooperation::locateSortie(const TraverseLog
   rep.correction = l.observation.pose * believed.inverse();
   // How far the fix moves the robot from its pose on the sortie's odometry. Not the
   // correction's translation, which for a turn adds the turn times the robot's distance from
-  // the map's origin (seed 48 of the building with --doorway-width 1.2: a look at home
-  // turning the sortie 14 degrees, 3.2 m from the origin, was refused as a 3.16 m move, and
-  // the robot stopped for good; trusted, its sortie was fixed 0.6 cm off the truth).
+  // the map's origin: a right fix that mostly turns a long sortie would be refused as a long
+  // move, and its robot would stop for good (measured:
+  // docs/experiments/2026-12-building-sessions-25-34.md).
   if (!movesWithin(rep.correction, believed, config_.max_fix_jump_m, config_.max_fix_jump_rad)) {
     char note[96];
     std::snprintf(note, sizeof note, "fix not trusted: it moves the robot %.2f m and %.1f deg",

@@ -33,14 +33,13 @@ struct CooperationConfig {
   // (closure_scans radial maps every closure_stride entries) are aligned to it, and those
   // that fit (inlier share >= closure_min_inliers; an alignment that would move the map's
   // origin, by the home base, at most closure_max_m and turn at most closure_max_rad from
-  // where the home-base correction put them: see closuresAgainst) become loop closures of a
-  // pose-graph correction: the sortie is made to agree with what is already shared. Off by default,
-  // measured: with perfect odometry (lab, two robots, seeds 1-5) the shared map's
-  // false_occupied_rate is 0.0109 without closures, 0.0145 with both kinds and 0.0178 with closures
-  // within the sortie only: they place scans by stereo alignments, which carry stereo's own errors.
-  // With drifting, calibrated odometry (seeds 1-20) none / within the sortie / both gave
-  // wall_recall 0.938 / 0.937 / 0.943, false_occupied_rate 0.0155 / 0.0161 / 0.0166 and home-base
-  // fixes at most 0.75 / 0.68 / 1.04 deg off the truth.
+  // where the home-base correction put them: see mapClosures) become loop closures of a
+  // pose-graph correction: the sortie is made to agree with what is already shared. Off by
+  // default: closures place scans by stereo alignments, which carry stereo's own errors; with
+  // exact odometry the shared map has the fewest false obstacles without closures of either
+  // kind, and with drifting, calibrated odometry closures to the shared map add false
+  // obstacles for little gain in walls found, and the home-base fixes that follow are farther
+  // off the truth (measured: docs/experiments/2026-11-lab-exploration.md).
   bool closures = false;
   int closure_scans = 6;
   int closure_stride = 9;
@@ -52,15 +51,17 @@ struct CooperationConfig {
   // Shaped closures: a closure constrains a position only in the directions its alignment
   // pins down; along the weak direction the sigma grows as sqrt(strong / weak information),
   // up to closure_max_sigma_m. Round (off), every closure pins the position in all directions
-  // alike: in a straight corridor, where an alignment can slide along the walls, that moved
+  // alike: in a straight corridor, where an alignment can slide along the walls, that moves
   // whole stretches. Off by default: on the lab, whose alignments see corners, it measured
-  // no better; the building turns it on (README).
+  // no better; the agents turn it on (core/agent/agent_settings.h;
+  // measured in docs/experiments/2026-12-building-settings.md).
   bool closure_shape = false;
   double closure_max_sigma_m = 5.0;
   // Closures within the sortie too (beyond the paper): stretches of each half aligned to
   // the other half's map, leaving self_closure_gap entries out either side of the middle.
-  // On by default: with drifting odometry the maps are as good as without, and the fixes
-  // that follow, on calibrated odometry, the best of the three (see above).
+  // On by default: with drifting odometry the maps are about as good as without, and the
+  // home-base fixes that follow, on calibrated odometry, come closest to the truth of the
+  // three choices (measured with the closures above).
   bool self_closures = true;
   int self_closure_gap = 60;
   AlignmentConfig closure_alignment;
@@ -71,17 +72,20 @@ struct CooperationConfig {
   double min_home_agreement = 0.5;
   int home_check_scans = 30;
   // Beyond the paper: the home base's two corners look alike from places their spacing
-  // apart, and a fix can land on the wrong one (lab_corridor seed 12: 1.38 m off, and the
-  // check above passed it at 0.62). The shared map knows more of home than the reference
-  // look: the look, placed by the fix, is also scored at placements up to rival_search_m
-  // away (at least rival_min_shift_m off, turned up to rival_max_turn_rad). When one fits
-  // better by rival_margin (share of points within a cell of an obstacle), the fix moves
-  // there (aligned from it) or, when that alignment fails or leaves the places searched, is
-  // not trusted. 0: off.
+  // apart, and a fix can land on the wrong one, metres off, with enough of the look on the
+  // shared map's obstacles to pass the check above. The shared map knows more of home than
+  // the reference look: the look, placed by the fix, is also scored at placements up to
+  // rival_search_m away (at least rival_min_shift_m off, turned up to rival_max_turn_rad).
+  // When one fits better by rival_margin (share of points within a cell of an obstacle), the
+  // fix moves there (aligned from it) or, when that alignment fails or leaves the places
+  // searched, is not trusted (measured: docs/experiments/2026-12-shared-maps-and-fix-check.md).
+  // 0: off.
   double rival_search_m = 2.0;
   double rival_min_shift_m = 0.5;
-  // 12 degrees: a wrong fix 8.8 degrees off (lab_corridor seed 6) had left the 4 searched
-  // before, and its robot stopped lost.
+  // 12 degrees: a fix on the wrong corner can be several degrees off in heading too, and a
+  // search that turns less leaves its true place outside the places searched, so the fix is
+  // not trusted and its robot stops, lost (measured:
+  // docs/experiments/2026-12-shared-maps-and-fix-check.md).
   double rival_max_turn_rad = 12.0 * M_PI / 180.0;
   double rival_margin = 0.1;
   // Beyond the paper: before posting, the corrected sortie's stretches (closure_scans radial
@@ -90,26 +94,27 @@ struct CooperationConfig {
   // middle is withheld: the shared map says the correction misplaced it, and posting it would
   // draw its walls where there are none and clear free space through real ones. Stretches
   // that do not align (new territory, too few points) are posted. 0: off, everything posted
-  // (the default; the building turns it on, measured in the README).
+  // (the default here and the agents'; measured in docs/experiments/2026-12-building-settings.md).
   double post_gate_m = 0.0;
   double post_gate_rad = M_PI;
   // Beyond the paper: headings from the building's walls (manhattanTurn). Each stretch of the
   // corrected sortie (closure_scans radial maps every closure_stride entries) whose walls
   // show a turn from the axes of `manhattan` gives the pose graph a heading observation of
   // 1-sigma manhattan_sigma_rad at its middle (position free). Only for worlds whose walls
-  // run along two perpendicular axes. 0: off (the default). The building, seeds 1-12, at
-  // 0.6 deg: the corrected sorties' heading error 0.5-1.1 -> 0.26-0.61 deg (sd per robot),
-  // their error across the corridors 0.114 -> 0.075 m (mean), the shared map's wall_recall
-  // 0.839 -> 0.884 and false_occupied_rate 0.0231 -> 0.0219 (README). The position is left
-  // free by an xy_information of ~0 (PoseObservation has no heading-only kind).
+  // run along two perpendicular axes. 0: off (the default here; the agents turn it on,
+  // core/agent/agent_settings.h). There the walls a robot sees give its heading absolutely,
+  // wherever it is, so the corrected sorties keep closer to the truth in heading and across
+  // the corridors, and the shared map finds more walls with fewer false obstacles (measured:
+  // docs/experiments/2026-12-building-settings.md). The position is left free by an
+  // xy_information of ~0 (PoseObservation has no heading-only kind).
   double manhattan_sigma_rad = 0.0;
   ManhattanConfig manhattan;
   // Passes of the walls' headings: each after the first finds them again on the poses the
   // one before corrected, and is kept when it found more. The walls' turn is searched
   // within manhattan.search_rad of the axes, so a sortie whose first correction is further
-  // off gets no headings where it needs them (the building, seeds 1-24: 8-28 headings for
-  // ~900 radial maps, 1-5.6 deg off all along, up to 1.2 m). 3 passes against 1: wall_recall
-  // 0.948 -> 0.967, false_occupied_rate 0.0143 -> 0.0138, coverage >= 0.9 in 20 -> 23 runs.
+  // off gets few headings where it needs them and stays off in heading all along; found
+  // again on the corrected poses, the walls hold it, and the shared map finds more walls
+  // (measured: docs/experiments/2026-12-building-sessions-25-34.md).
   int manhattan_passes = 3;
   // Beyond the paper: a robot's map frame is its home base's as its first look placed it, a
   // few tenths of a degree and a centimetre or two off the design for a look from afar, and
@@ -176,11 +181,11 @@ std::vector<PoseObservation> manhattanHeadings(const TraverseLog& log,
 // shaped by the alignment with closure_shape). With `estimate` (the robot's live estimate
 // at each entry, held by the walls' headings while it drove), each stretch is also placed
 // on its own odometry where the estimate had its middle, and the better fit of the two (the
-// larger share of points on the map's obstacles) is taken: where the home-base correction
-// left a long sortie's far end off by a metre and degrees (a heading drift that one fix
-// cannot tell from the rest), the estimate was within 0.2 m and half a degree, and the
-// stretches fit from there (building seed 12: 14 closures to 70). Throws
-// std::invalid_argument when a pose list's length differs from the log's.
+// larger share of points on the map's obstacles) is taken: one home-base fix cannot tell a
+// long sortie's heading drift from the rest and can leave its far end well off, where the
+// estimate, held by the walls, stays close, and many more stretches fit from there (measured:
+// docs/experiments/2026-12-building-settings.md). Throws std::invalid_argument when a pose
+// list's length differs from the log's.
 std::vector<PoseObservation> mapClosures(const TraverseLog& log,
                                          const std::vector<Pose2>& corrected,
                                          const ScanAligner& aligner,

@@ -205,7 +205,16 @@ void MissionAgent::chooseGoal(double now, const Pose2& odometry, const Occupancy
   goal_deadline_ =
       now + config_.goal_timeout_factor * (path_.length() / config_.route.linear_speed + 10.0);
   last_check_ = now;
-  std::vector<Waypoint> route = routeOf(path_.waypoints);
+  // Arriving, face the frontier: the robot would face the way it came, often not the
+  // frontier's (a corridor's mouth passed at its side), and a frontier not seen from its goal
+  // is not gone to again.
+  goal_face_.reset();
+  const Eigen::Vector2d to_frontier = step.frontier.centroid - goal_;
+  if (to_frontier.norm() > map.limits().resolution) {
+    goal_face_ = std::atan2(to_frontier.y(), to_frontier.x());
+    goal_deadline_ += config_.goal_timeout_factor * M_PI / config_.route.angular_speed;
+  }
+  std::vector<Waypoint> route = goalRoute(odometry);
   if (step.look_around) {
     // Its frontier was not seen from this goal before: a full circle there shows it.
     if (route.empty()) route.push_back({odometry.translation(), false, 0.0, 0.0});
@@ -215,6 +224,16 @@ void MissionAgent::chooseGoal(double now, const Pose2& odometry, const Occupancy
   startRoute(std::move(route), now);
   last_event_ = std::string(step.look_around ? "to look around again at (" : "to frontier at (") +
                 std::to_string(goal_.x()) + ", " + std::to_string(goal_.y()) + ")";
+}
+
+std::vector<Waypoint> MissionAgent::goalRoute(const Pose2& odometry) const {
+  std::vector<Waypoint> route = routeOf(path_.waypoints);
+  if (goal_face_) {
+    if (route.empty()) route.push_back({odometry.translation(), false, 0.0, 0.0});
+    route.back().face = goal_face_;
+    route.back().face_within = config_.route.heading_tolerance;  // a look, not a home-base look
+  }
+  return route;
 }
 
 void MissionAgent::goHome(double now, const Pose2& odometry, const OccupancyGrid& map) {
@@ -348,6 +367,7 @@ void MissionAgent::lookFrom(const Waypoint& look, double now) {
   if (phase_ != MissionPhase::kAtStart) return;
   phase_ = MissionPhase::kLookAtHome;
   pose_jumped_ = true;  // the poses given are the map frame's from now on
+  approach_look_ = look;
   startRoute({look}, now);
   last_event_ = "driving nearer to the home base to look again";
 }
@@ -503,7 +523,7 @@ MotionCommand MissionAgent::decide(double now, const Pose2& odometry, const Occu
       const PlanResult around = planner_.plan(planningMap(map, false), odometry, goal_);
       if (around.solved()) {
         path_ = around.path;
-        startRoute(routeOf(path_.waypoints), now);
+        startRoute(goalRoute(odometry), now);
       } else {
         has_goal_ = false;  // not blacklisted: the way is only blocked for now
       }
@@ -514,8 +534,20 @@ MotionCommand MissionAgent::decide(double now, const Pose2& odometry, const Occu
 
   switch (phase_) {
     case MissionPhase::kLookAtHome: {
+      // Driving nearer to look again, never into what the cameras see ahead (a teammate at
+      // its start between this robot and the home base): the look is taken from here.
+      if (approach_look_ && last_command_.linear > 0.0 && latest && obstacleAhead(*latest)) {
+        ++safety_stops_;
+        Waypoint here = *approach_look_;
+        here.position = odometry.translation();
+        approach_look_.reset();
+        startRoute({here}, now);
+        last_event_ = "obstacle ahead: looking at the home base from here";
+        return last_command_ = MotionCommand::stop();
+      }
       const MotionCommand cmd = follower_->update(odometry, now);
-      if (!follower_->done()) return cmd;
+      if (!follower_->done()) return last_command_ = cmd;
+      approach_look_.reset();
       follower_.reset();
       if (placed_home_) {  // placed beforehand, in the frame it works in: explore now
         home_ = target_ = *placed_home_;
@@ -546,7 +578,7 @@ MotionCommand MissionAgent::decide(double now, const Pose2& odometry, const Occu
           const PlanResult around = planner_.plan(planningMap(map, false), odometry, goal_);
           if (around.solved()) {
             path_ = around.path;
-            startRoute(routeOf(path_.waypoints), now);
+            startRoute(goalRoute(odometry), now);
             last_event_ = "obstacle ahead: replanned around it";
           } else {
             ++goals_failed_;
@@ -580,7 +612,7 @@ MotionCommand MissionAgent::decide(double now, const Pose2& odometry, const Occu
         if (r.replanned) {
           if (r.result.solved()) {
             path_ = r.result.path;
-            startRoute(routeOf(path_.waypoints), now);
+            startRoute(goalRoute(odometry), now);
             last_event_ = "path blocked: replanned";
           } else if (!recent_.empty() && r.result.status == PlanStatus::kGoalInvalid &&
                      planningMap(map, false, false).freeAt(goal_)) {

@@ -37,22 +37,20 @@ struct MissionConfig {
   // With no way home in the map, a robot farther than look_from_m from home first plans with
   // the least margin that still keeps its body off every blocked cell (sqrt(2) * resolution,
   // if planning.margin is more): a door drawn narrower than it is by the smear of its jambs
-  // and the estimate's offset (the building's seeds 1 and 3: the lab door 0.5 m wide in the
-  // robot's map) has room for the body without the margin. With no way even so (a person in
-  // the corridor, say), it stops and plans again after home_retry_s; it drove straight at
-  // home before, and in the building once into a mapped wall too close for the cameras to see.
+  // and the estimate's offset has room for the body without the margin (measured:
+  // docs/experiments/2026-12-building-settings.md). With no way even so (a person in the
+  // corridor, say), it stops and plans again after home_retry_s rather than drive straight at
+  // home, which can take it into a mapped wall too close for the cameras to see.
   double home_retry_s = 2.0;  // s
   // After this many waits in a row with no way home in the map (0: never), it plans home on
   // its trail: the cells within its radius plus the least margin and a cell of where it has
   // driven this sortie count as free whatever the map drew there since. Its body passed
-  // there; a stray cell in a door blocks the map, not the way (the building's seed 25: the
-  // lab door, 0.9 m wide, drawn 0.6 m with a stray cell in it; the robot waited from 1010 s
-  // to the end at the north corridor's west end). The bumpers and teammates still block it,
-  // and what the cameras have just seen off the trail; not what they see on it: a robot
-  // waiting in one place sees the same things frame after frame, and a door's jambs seen
-  // obliquely put hits in its opening for as long as it waits (seed 41, with a look-again
-  // target as the estimate places home: eric at the north corridor's west end from 1362 s to
-  // the end, the lab door's 0.9 m closed by fresh hits). The safety stop, on the latest
+  // there; a stray cell in a door blocks the map, not the way, and a robot that waits on the
+  // map alone can wait for good. The bumpers and teammates still block it, and what the
+  // cameras have just seen off the trail; not what they see on it: a robot waiting in one
+  // place sees the same things frame after frame, and a door's jambs seen obliquely put hits
+  // in its opening for as long as it waits, closing the door again (measured:
+  // docs/experiments/2026-12-building-sessions-25-34.md). The safety stop, on the latest
   // radial map, still stops it short of whatever stands on the trail.
   int trail_after_waits = 5;
   // When no frontier goal is left and some failed this sortie (or had no way to them), after
@@ -70,23 +68,27 @@ struct MissionConfig {
   double max_linear_accel = 0.0;
   // m from the cameras: an obstacle this close ahead stops the robot. The stereo sees
   // nothing nearer than 0.26 m (32 disparities, 8 px m of focal length times baseline), and a
-  // robot at 0.4 m/s moves 0.13 m between frames: 0.30 m leaves a narrow band (0.45 m with
-  // slow_distance 1 m halved the contacts on the lab and the building: README).
+  // robot at 0.4 m/s moves 0.13 m between frames: 0.30 m leaves a narrow band. The agents
+  // stop farther off and slow down as they near an obstacle (their safety_distance and
+  // slow_distance, core/agent/agent_settings.h), which brings fewer contacts on the lab and
+  // the building (measured: docs/experiments/2026-12-building-settings.md).
   double safety_distance = 0.30;
   double safety_half_angle = 0.5;  // rad: "ahead"
   // m: an obstacle ahead nearer than this slows the robot, in proportion down to
   // slow_fraction of its cruise at safety_distance (the cameras see 3 times a second and
   // nothing nearer than their stereo's least depth: at full speed a person walking towards
-  // the robot crossed the whole band between that depth and safety_distance unseen). 0: off.
+  // the robot can cross the whole band between that depth and safety_distance unseen).
+  // 0: off.
   double slow_distance = 0.0;
   double slow_fraction = 0.35;
   // s: what the cameras saw in the last this many seconds (hits within recent_hits_range)
   // blocks the robot's planning, whatever its map holds there. Its map is mostly the shared
-  // map, placed by corrected traverses that can be 0.2 m off across a corridor, and the cells
-  // it holds firmly free take many hits to turn; a hit seen a moment ago is where it is
-  // relative to the robot, to the drift of a few seconds. It matters where the cameras stop
-  // seeing what they saw farther off: a textureless wall is seen only by where the floor
-  // ends, and the floor only from 1.2 m. 0: off.
+  // map, placed by corrected traverses that can be several cells off across a corridor
+  // (measured: docs/experiments/2026-12-building-settings.md), and the cells it holds firmly
+  // free take many hits to turn; a hit seen a moment ago is where it is relative to the
+  // robot, to the drift of a few seconds. It matters where the cameras stop seeing what they
+  // saw farther off: a textureless wall is seen only by where the floor ends, and the floor
+  // only from 1.2 m. 0: off.
   double recent_hits_s = 0.0;
   // m: only hits this near the cameras are remembered, and only while this near the robot
   // (a local layer: the frontiers, and the goals, are chosen by the map alone).
@@ -156,10 +158,10 @@ struct MissionConfig {
   double min_sortie_m = 3.0;
   FrontierConfig frontiers;
   // Bounded by sampling iterations, not by time: a run must not depend on how busy the
-  // machine is. (With the 1 s budget alone, a query of the building that took 240k iterations,
-  // 0.8 s on an idle machine, ran out of time with three runs on two cores, and the same
-  // seed gave another run.) The time budget is only a backstop: 1M iterations, four times
-  // the most the building's runs needed, take about 3.5 s here.
+  // machine is (a query that runs out of time on a busy machine gives the same seed another
+  // run). The time budget is only a backstop, far above what the iteration bound takes; the
+  // bound is well above what the building's queries need (measured:
+  // docs/experiments/2026-12-path-planning.md).
   PlannerConfig planner = [] {
     PlannerConfig p;
     p.max_iterations = 1'000'000;
@@ -278,6 +280,8 @@ class MissionAgent {
   // The free cell nearest the robot within escape_radius, if any.
   std::optional<Eigen::Vector2d> nearestFreeCell(const PlanningMap& planning,
                                                  const Pose2& odometry) const;
+  // The route along path_ to the goal, turning to face its frontier on arrival.
+  std::vector<Waypoint> goalRoute(const Pose2& odometry) const;
   void goHome(double now, const Pose2& odometry, const OccupancyGrid& map);
   // The free cell of `from`'s region nearest `to`, if it is at least 0.5 m nearer than `from`.
   std::optional<Eigen::Vector2d> nearestReachable(const PlanningMap& planning, const Pose2& from,
@@ -291,8 +295,9 @@ class MissionAgent {
   std::unique_ptr<RouteFollower> follower_;
   FrontierExplorer explorer_;
   PathPlanner planner_;
-  PlannedPath path_;            // the path being followed (explore or return)
-  Eigen::Vector2d goal_{0, 0};  // its goal
+  PlannedPath path_;                 // the path being followed (explore or return)
+  Eigen::Vector2d goal_{0, 0};       // its goal
+  std::optional<double> goal_face_;  // the heading to turn to there, facing its frontier
   bool has_goal_ = false;
   double goal_deadline_ = 0.0;
   double backoff_until_ = -1.0;
@@ -302,13 +307,13 @@ class MissionAgent {
   double sortie_start_ = -1.0;  // of the current sortie
   int sortie_ = 1;
   bool pose_jumped_ = false;
-  bool plan_home_ = false;  // returnAgain: plan the way home at the next update
-  bool plan_home_at_end_ = false;
-  std::string complete_reason_;  // why exploration was found complete
-  int sortie_goals_ =
-      0;  // goals reached this sortie  // the route ends short of home: plan again there
+  bool plan_home_ = false;         // returnAgain: plan the way home at the next update
+  bool plan_home_at_end_ = false;  // the route ends short of home: plan again there
+  std::string complete_reason_;    // why exploration was found complete
+  int sortie_goals_ = 0;           // goals reached this sortie
   int return_bumps_ = 0;
   int sortie_bumps_ = 0;
+  std::optional<Waypoint> approach_look_;  // the look driven nearer to take (lookFrom)
   std::vector<Eigen::Vector2d> teammates_;
   std::vector<Eigen::Vector2d> claims_;  // teammates' goals since the last import
   int early_returns_ = 0;

@@ -85,11 +85,18 @@ PlanningMap MissionAgent::planningMap(const OccupancyGrid& map, bool allow_unkno
   // What the bumpers touched this sortie, and teammates while they stand where they are.
   for (const Eigen::Vector2d& p : bumps_)
     fillDisc(states, p, config_.bump_radius, CellState::kOccupied);
-  for (const Eigen::Vector2d& p : teammates_)
-    fillDisc(states, p, config_.team_radius, CellState::kOccupied);
   PlanningMapConfig c = config_.planning;
   c.allow_unknown = allow_unknown;
   if (margin >= 0.0) c.margin = margin;
+  // A teammate standing nearer than its disc and this robot's clearance (two robots placed
+  // side by side, one coming back to the home base beside the other) blocks the disc's
+  // outer margin only so far as the robot can still plan from where it stands: else both
+  // stand on blocked cells, neither can plan a step away, and neither explores.
+  for (const Eigen::Vector2d& p : teammates_) {
+    const double apart = (p - last_pose_.translation()).norm();
+    const double leaves_me_free = apart - c.robot_radius - c.margin - lim.resolution;
+    fillDisc(states, p, std::clamp(leaves_me_free, 0.0, config_.team_radius), CellState::kOccupied);
+  }
   return PlanningMap(states, c);
 }
 

@@ -122,7 +122,7 @@ MotionCommand RouteFollower::update(const Pose2& pose, double now) {
         // Slowly at the end, to within face_tolerance: a look that starts as the start's did
         // sees the same things in the same image columns.
         const double err = wrapAngle(*wp.face - pose.theta);
-        if (std::abs(err) > config_.face_tolerance) {
+        if (std::abs(err) > (wp.face_within > 0.0 ? wp.face_within : config_.face_tolerance)) {
           const double w =
               std::clamp(config_.heading_gain * err, -config_.angular_speed, config_.angular_speed);
           return {0.0, std::abs(w) < 0.02 ? std::copysign(0.02, err) : w};

@@ -21,6 +21,7 @@ struct Waypoint {
   // rad, odometry (map) frame: on arrival, first turn in place to this heading (then wait,
   // then spin). A look at the home base this way starts as the start's look did.
   std::optional<double> face = std::nullopt;
+  double face_within = 0.0;       // rad: `face` turned to within this; 0: the route's
   double arrive_tolerance = 0.0;  // m: arrived within this; 0: the route's
 };
 

@@ -60,11 +60,11 @@ struct CorrectionConfig {
   CorrectionModel model = CorrectionModel::kHeadingDrift;
   OdometryErrorModel odometry;
   // Pose graph: the distance scale is one of the unknowns. False: held at zero (as the
-  // heading-drift model always holds it), for odometry whose scale was calibrated
+  // heading-drift model always holds it), for odometry whose scale is calibrated
   // beforehand: with only a home-base fix and the walls' headings to go on, a sortie that
-  // comes home ends where it would on any scale, and fitting one soaks up the random errors
-  // (the building's seed 19: +0.2 % fitted where the encoders counted 0.15 % under the
-  // calibration, the far corridor's corrected poses 16 cm short).
+  // comes home ends where it would on any scale, and fitting one soaks up the random errors,
+  // drawing the far corridors' walls short or long (measured:
+  // docs/experiments/2026-12-building-sessions-25-34.md).
   bool fit_distance_scale = true;
   int max_iterations = 50;  // solver iterations (fitted models)
 };

@@ -19,8 +19,8 @@ class OdometryCalibration {
   // `distance_scale` false: the distance scale is left uncalibrated (0), whatever the sorties
   // find. A home-base fix does not observe it (an out-and-back path's distance errors
   // cancel); only loop closures do, weakly, and a closure biased along a corridor turns into
-  // a scale error every later sortie drives on (README: the building's first sorties found
-  // +1.9 to +4.6 % where the odometry over-counts 1 %).
+  // a scale error every later sortie drives on, larger than the odometry's own
+  // (measured: docs/experiments/2026-12-building-settings.md).
   explicit OdometryCalibration(bool distance_scale = true) : distance_scale_(distance_scale) {}
   // What a corrected sortie found (residual errors of the odometry it ran on) over
   // `length_m` driven. Sorties shorter than min_length_m tell too little and are skipped.

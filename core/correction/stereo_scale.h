@@ -25,7 +25,8 @@ struct StereoScaleConfig {
   double max_sigma_m = 0.005;    // 1-sigma of the match's position along the travel, at most
   int max_iterations = 20;
   // Passes, each after the first from the odometry rescaled to the one before's figure:
-  // that finds the whole scale, but in the building (seeds 1-12) one pass mapped better.
+  // more passes find more of the whole scale, but in the building one pass maps better
+  // (measured: docs/experiments/2026-12-building-sessions-25-34.md).
   int passes = 1;
   double max_shift_m = 0.1;  // a match that moves the later points farther is refused
   void validate() const;     // throws std::invalid_argument naming the field
@@ -42,8 +43,9 @@ struct StereoScale {
   double scale() const { return sum_ss > 0.0 ? sum_so / sum_ss - 1.0 : 0.0; }
 };
 
-// The matches lean toward the displacement they start from, the odometry's: on the
-// building's logs one pass finds about 70 % of a scale (StereoScaleConfig::passes).
+// The matches lean toward the displacement they start from, the odometry's: one pass finds
+// only part of a scale (StereoScaleConfig::passes; measured:
+// docs/experiments/2026-12-building-settings.md).
 StereoScale stereoDistanceScale(const TraverseLog& log, const StereoScaleConfig& config = {});
 
 }  // namespace coopmap

@@ -25,7 +25,8 @@ struct RadialMapConfig {
   // wall): a return at the floor's end. Open floor stays matchable to about 1.6 m with the
   // B-14's 160 x 120 cameras 0.9 m up (nearer than about 1.22 m they do not see the floor),
   // so only a nearer end says "occluded"; 1.5 m suits them. 0: off (the default: in a room
-  // whose walls all have texture it only adds the floor ends' errors; measured, README).
+  // whose walls all have texture it only adds the floor ends' errors; measured in
+  // docs/experiments/2026-12-building-settings.md; the agents use 1.5).
   double floor_edge_depth = 0.0;
   double floor_tolerance = 0.5;  // px: a pixel is floor when its disparity is the floor's +- this
   // m, 1-sigma range uncertainty of a floor's end at least (on rendered frames it fell 2 cm
@@ -38,7 +39,7 @@ struct RadialMapConfig {
   // two beyond max_range clears the wall's whole length behind it; the building's plaster
   // wall is drawn with 3 (as min_support for a hit). In a room whose walls all have texture
   // a far view seen by only a pixel or two is mostly a true one, and 3 there made the maps
-  // worse (measured, README).
+  // worse (measured in docs/experiments/2026-12-building-settings.md; the agents use 3).
   int beyond_support = 1;
 
   void validate() const;  // throws std::invalid_argument naming the field

@@ -36,8 +36,8 @@ struct FrontierConfig {
   // where they lie in an opening: between two obstacles on opposite sides (along a grid axis
   // or a diagonal) at most this far apart and at least doorway_min_width. A door seen only
   // obliquely leaves its opening uncertain and its jambs smeared: with fringe_clearance alone
-  // no frontier led through it, and whatever lay beyond went unexplored (the building's lab
-  // back door, seeds 5 and 8). 0: off.
+  // no frontier leads through it, and whatever lies beyond goes unexplored (measured on the
+  // building's lab back door: docs/experiments/2026-12-building-settings.md). 0: off.
   double doorway_width = 0.0;
   double doorway_min_width = 0.25;  // m: narrower gaps are no way through
   // m: a goal this far from every blocked cell (centre to centre) is preferred to a nearer
@@ -45,10 +45,11 @@ struct FrontierConfig {
   double goal_clearance = 0.0;
   // Never-observed cells: a frontier whose goal the robot has reached (markReached) but that
   // still has at least this gain once no other frontier has a goal is gone to once more, to
-  // turn a full circle at its goal (ExploreStep::look_around). Arriving, a robot faces the
-  // way it came, which often is not the frontier's (the mouth of a side corridor passed at
-  // its end): exploration ended with whole corridors unseen. A mission marks its reached
-  // goals with MissionConfig::retry_frontiers (without, it blacklists them). 0: off.
+  // turn a full circle at its goal (ExploreStep::look_around). A robot arriving at a goal may
+  // not see its frontier from there (the mouth of a side corridor passed at its end), and
+  // without a second look exploration can end with whole corridors unseen. A mission marks
+  // its reached goals with MissionConfig::retry_frontiers (without, it blacklists them).
+  // 0: off.
   int look_again_gain = 0;
   void validate() const;  // throws std::invalid_argument naming the field
 };

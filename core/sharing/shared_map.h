@@ -6,10 +6,10 @@
 //
 // Two grids take the same posts. The robots import the shared grid: their aligner's distance
 // field and their planner's obstacles, which want each return drawn over a wide band (the
-// home-base fixes got worse with a narrower one). The published grid is the map people get
+// home-base fixes are worse with a narrower one). The published grid is the map people get
 // (outputs, metrics): each return drawn over the band its range error has. Stereo's is
-// narrower than the band the shared grid draws: `coopmap remap --range-errors` on the
-// building's runs found a robust sd 0.3-0.6 of the modelled sigma at 1-5 m, no bias.
+// narrower than the band the shared grid draws, as `coopmap remap --range-errors` measures it
+// on the building's runs (measured: docs/experiments/2026-12-building-sessions-25-34.md).
 //
 // Snapshot file format, version 2 (little-endian): 8 bytes magic "CMSHAREM", u32 version,
 // f64 resolution, f64 origin x, y, i32 width, height, u64 map version, u32 robot count, per
@@ -75,10 +75,11 @@ class SharedMapService {
   virtual const OccupancyConfig& config() const = 0;
 };
 
-// The published grid's band (OccupancyConfig::sigma_scale) the runs use by default: the
-// building's runs' robust range sd is 0.3-0.6 of the modelled sigma at 1-5 m. Remapped with
-// it, their published maps (seeds 1-24, corrected poses): wall_recall 0.968 -> 0.961,
-// false_occupied_rate 0.0142 -> 0.0088 (0.7: 0.966, 0.0110).
+// The published grid's band (OccupancyConfig::sigma_scale) the runs use by default: half the
+// modelled sigma, about the robust spread stereo's range errors have in the building's runs.
+// Drawn at it, the published map loses a little wall recall and has far fewer false
+// obstacles than at the shared grid's band (measured:
+// docs/experiments/2026-12-building-sessions-25-34.md).
 inline constexpr double kPublishedSigmaScale = 0.5;
 
 // The in-process service; thread-safe. With a non-empty `folder` the map is restored from

@@ -212,6 +212,7 @@ int runMission(const RobotCommandOptions& o, const RobotRunConfig& c, std::FILE*
   const double period = 1.0 / c.control_rate;
   auto next = std::chrono::steady_clock::now();
   size_t logged = 0;
+  std::string event;
   if (!o.quiet)
     std::fprintf(out, "rflex %s: %s mission of %s\n", c.rflex.device.c_str(),
                  toString(mission.setup.mode), mission.setup.name.c_str());
@@ -235,6 +236,11 @@ int runMission(const RobotCommandOptions& o, const RobotRunConfig& c, std::FILE*
     r.odometry.push_back({robot.now(), robot.odometry()});
     for (; logged < agent.log().size(); ++logged)
       if (!o.quiet) std::fprintf(out, "%s\n", agent.log()[logged].c_str());
+    // What the mission decides, as it changes: for whoever watches the robot.
+    if (const MissionAgent* m = agent.mission(); m && m->lastEvent() != event) {
+      event = m->lastEvent();
+      if (!o.quiet) std::fprintf(out, "%.1f s: %s\n", robot.now(), event.c_str());
+    }
     if (agent.done()) {
       why = "mission done (" + agent.phase() + ")";
       break;

@@ -103,7 +103,7 @@ touched, empty when it does not say.
 What the robot's agent (`core/agent/robot_agent.h`) was set up with: `name`, `mode` (`route`,
 `explore` or `driven`), the path planner's `seed`, `priority`, `map` (its grid), `home_base`
 (the home base as designed, which defines the map frame), `route` (map frame) and
-`settings` (`docs/settings.md`).
+`settings` (docs/settings.md).
 
 ### PNG grids
 

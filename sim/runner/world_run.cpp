@@ -87,6 +87,7 @@ struct RobotSlot {
   std::unique_ptr<RobotAgent> agent;
   std::unique_ptr<RouteFollower> driver;  // world frame, by the true pose
   int recording = -1;
+  std::string last_event;  // the mission's, as the event observer last heard it
 };
 
 sim::OdometryConfig odometryOf(const RobotModel& model, const std::optional<std::string>& choice,
@@ -111,6 +112,15 @@ sim::OdometryConfig odometryOf(const RobotModel& model, const std::optional<std:
   return odometry;
 }
 
+// The distance scale the robot's operators measured for the encoders a run gives it: the
+// model's default ones, or a preset's; perfect ones need none.
+double calibratedDistanceScale(const RobotModel& model, const std::optional<std::string>& choice) {
+  if (choice && *choice == "perfect") return 0.0;
+  const std::string preset = !choice || *choice == "drifting" ? "default" : *choice;
+  const auto it = model.calibrated_distance_scale.find(preset);
+  return it == model.calibrated_distance_scale.end() ? 0.0 : it->second;
+}
+
 }  // namespace
 
 RunResult runWorld(const RunOptions& opt) {
@@ -127,9 +137,23 @@ RunResult runWorld(const RunOptions& opt) {
     throw std::invalid_argument("--robots: expected 1.." + std::to_string(world.robots.size()) +
                                 " (robots in " + opt.world_file + "), got " +
                                 std::to_string(robot_count));
-  AgentSettings settings = world.mission_settings;
-  if (opt.settings) opt.settings(settings);
-  settings.validate();
+  // Each robot's agent settings: coopmap's defaults, its model's odometry calibration, then
+  // the run's.
+  std::vector<RobotModel> models;
+  std::vector<AgentSettings> robot_settings;
+  for (int i = 0; i < robot_count; ++i) {
+    const std::string& file = world.robots[i].model_file;
+    RobotModel& model = models.emplace_back(loadRobotModel(file));
+    model.odometry = odometryOf(model, opt.odometry, file);
+    AgentSettings s;
+    s.odometry_distance_scale = calibratedDistanceScale(model, opt.odometry);
+    if (opt.settings) opt.settings(s);
+    s.validate();
+    if (!robot_settings.empty() && s.sensing_rate != robot_settings.front().sensing_rate)
+      throw std::invalid_argument("sensing_rate: the robots of a run sense at one rate");
+    robot_settings.push_back(s);
+  }
+  const AgentSettings& settings = robot_settings.front();
   const bool explore = opt.explore.value_or(!opt.steer_by_truth && world.mission == "explore");
   if (opt.steer_by_truth && explore)
     throw std::invalid_argument("--steer-by-truth: the robots follow their routes, not explore");
@@ -165,8 +189,7 @@ RunResult runWorld(const RunOptions& opt) {
   std::vector<RobotDescription> descriptions;
   for (int i = 0; i < robot_count; ++i) {
     const sim::RobotSpec& spec = world.robots[i];
-    RobotModel model = loadRobotModel(spec.model_file);
-    model.odometry = odometryOf(model, opt.odometry, spec.model_file);
+    RobotModel& model = models[i];
     if (!opt.camera_noise) model.cameras = sim::CameraNoiseConfig{};
     const int index =
         sim.addRobot(spec, {model.description, model.drive, model.odometry, model.cameras});
@@ -204,8 +227,8 @@ RunResult runWorld(const RunOptions& opt) {
       }
       slot.driver = std::make_unique<RouteFollower>(route, RouteConfig{});
     }
-    slot.agent =
-        std::make_unique<RobotAgent>(*slot.robot, setup, settings, live ? &*live : nullptr, &team);
+    slot.agent = std::make_unique<RobotAgent>(*slot.robot, setup, robot_settings[i],
+                                              live ? &*live : nullptr, &team);
     slots.push_back(std::move(slot));
   }
 
@@ -252,6 +275,11 @@ RunResult runWorld(const RunOptions& opt) {
       else
         s.agent->step();
       scoring.observeStep(k, t, sim.truePose(i), sim.odometry(i), *s.agent);
+      if (const MissionAgent* m = s.agent->mission();
+          opt.event_observer && m && m->lastEvent() != s.last_event) {
+        s.last_event = m->lastEvent();
+        opt.event_observer(s.agent->name(), t, s.last_event);
+      }
       if (recorder) {
         if (s.agent->sensedLastStep() && s.robot->lastFrame())
           recorder->addFrame(s.recording, *s.robot->lastFrame(), s.agent->lastFrameSegment());

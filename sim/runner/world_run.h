@@ -51,7 +51,8 @@ struct RunOptions {
   // Autonomous missions (AgentSetup::kExplore) instead of the routes; unset: the world's
   // `mission` mode.
   std::optional<bool> explore;
-  // The agents' settings: coopmap's defaults, then the world's `mission:` block, then this.
+  // The agents' settings: coopmap's defaults and each robot model's odometry calibration
+  // (calibrated_distance_scale), then this.
   std::function<void(AgentSettings&)> settings;
   // The home base as the robots are told it was designed (it defines the map frame); unset:
   // coopmap's standard home base (HomeBaseDesign's defaults). The world's must match it.
@@ -66,6 +67,9 @@ struct RunOptions {
   std::function<void(const std::string& robot, const TrinocularFrame& frame,
                      const cv::Mat& truth_depth)>
       frame_observer;
+  // Called whenever a robot's mission reports a new event (what it decided, why it stopped),
+  // with the simulated time: for people following a run.
+  std::function<void(const std::string& robot, double t, const std::string& event)> event_observer;
 };
 
 // A contact of a robot with anything (the simulator's truth): when, with what, where, and

@@ -11,7 +11,6 @@
 
 #include <Eigen/Core>
 
-#include "core/agent/agent_settings.h"
 #include "core/agent/route_follower.h"
 #include "core/geometry/pose2.h"
 
@@ -177,9 +176,6 @@ struct World {
   // What `coopmap run` does by default: "routes" (each robot follows its scripted route) or
   // "explore" (autonomous missions: sorties from the home base, shared map).
   std::string mission = "routes";
-  // The robots' settings its `mission:` block names, over coopmap's defaults (the command
-  // line overrides them).
-  AgentSettings mission_settings;
 
   // The floor's rectangles: `floor_areas`, or the bounding rectangle if that is empty.
   std::vector<FloorArea> floorRects() const;

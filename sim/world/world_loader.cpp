@@ -211,14 +211,12 @@ World parseWorld(const std::string& text, const std::string& file) {
   w.file = file;
   w.name = root["name"].asString();
   if (const auto mission = root.get("mission")) {
-    // "routes", "explore", or a map: {mode: routes|explore, and the exploration settings}.
-    const YamlField mode = mission->isMap() ? (*mission)["mode"] : *mission;
-    w.mission = mode.asString();
-    if (w.mission != "routes" && w.mission != "explore") mode.fail("'routes' or 'explore'");
-    if (mission->isMap()) {
-      // Every key but the mode is one of the agents' settings (core/agent/agent_settings.h).
-      readAgentSettings(*mission, w.mission_settings, {"mode"});
-    }
+    if (mission->isMap())
+      mission->failMessage(
+          "expected 'routes' or 'explore': the robots' settings are no part of a world (give "
+          "them with `coopmap run --settings FILE` or as flags)");
+    w.mission = mission->asString();
+    if (w.mission != "routes" && w.mission != "explore") mission->fail("'routes' or 'explore'");
   }
   if (root.has("seed")) w.seed = static_cast<uint64_t>(root["seed"].asInt(0, 1 << 30));
 

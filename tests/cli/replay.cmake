@@ -1,13 +1,13 @@
 # `coopmap run --record` and `coopmap replay`: the same agents run on a recording, observe-only,
 # reproduce the live run's maps and traverse logs byte for byte (two exploring robots, each
-# placed by its looks at the home base, one driving nearer to look again, a sortie ended at
-# home: corrected, posted, the shared map imported); a broken recording gets a message naming
+# placed by its look at the home base, sorties ended at home: corrected, posted, the shared
+# map imported); a broken recording gets a message naming
 # the file and frame, a non-zero exit code, and nothing written.
 file(REMOVE_RECURSE "${WORK_DIR}")
 file(MAKE_DIRECTORY "${WORK_DIR}")
 execute_process(COMMAND "${COOPMAP}" run "${SOURCE_DIR}/worlds/lab.yaml" --out "${WORK_DIR}/live"
                         --record "${WORK_DIR}/rec" --explore --duration 150 --max-sorties 3
-                        --sortie-budget-m 4 --quiet
+                        --first-sortie-budget-m 4 --sortie-budget-m 4 --quiet
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "coopmap run --record failed (rc ${rc}):\n${out}${err}")

@@ -53,20 +53,17 @@ TEST(ExploreScenarioTest, OneRobotExploresTheLabAndComesHome) {
   EXPECT_GE(good, 3);
 }
 
-TEST(ExploreScenarioTest, TheWorldsMissionSettingsApplyUnlessTheRunSaysOtherwise) {
+TEST(ExploreScenarioTest, TheModelsCalibrationAndTheRunsSettingsApply) {
   RunOptions o;
   o.world_file = std::string(COOPMAP_SOURCE_DIR) + "/worlds/lab_corridor.yaml";
   o.explore = true;
   o.duration = 2.0;
   RunResult r = runWorld(o);
-  EXPECT_EQ(r.settings.first_sortie_budget_m, 10.0);  // worlds/lab_corridor.yaml
-  EXPECT_EQ(r.settings.safety_distance, 0.45);
-  EXPECT_TRUE(r.settings.retry_frontiers);
-  EXPECT_EQ(r.settings.closures, "none");
-  EXPECT_EQ(r.settings.odometry_distance_scale, 0.0101);      // calibrated from logs
+  // The defaults, and the encoders' distance scale robots/b14/b14.yaml says was measured.
+  AgentSettings expected;
+  expected.odometry_distance_scale = 0.0101;
+  EXPECT_EQ(r.settings, expected);
   EXPECT_EQ(r.robots[0].calibration.distance_scale, 0.0101);  // what the robot drives on
-  EXPECT_EQ(r.settings.closure_scans, 18);
-  EXPECT_EQ(r.settings.sensing_rate, AgentSettings{}.sensing_rate);  // the world says nothing
   o.settings = [](AgentSettings& s) {
     s.safety_distance = 0.6;
     s.closures = "self";
@@ -76,13 +73,15 @@ TEST(ExploreScenarioTest, TheWorldsMissionSettingsApplyUnlessTheRunSaysOtherwise
   EXPECT_EQ(r.settings.safety_distance, 0.6);
   EXPECT_EQ(r.settings.closures, "self");
   EXPECT_EQ(r.robots[0].calibration.distance_scale, 0.0);
-  EXPECT_EQ(r.settings.first_sortie_budget_m, 10.0);  // the world's still
-  // The lab says nothing: the defaults.
+  EXPECT_EQ(r.settings.first_sortie_budget_m, AgentSettings{}.first_sortie_budget_m);
+  // Perfect encoders need no calibration.
+  o.settings = nullptr;
+  o.odometry = "perfect";
+  EXPECT_EQ(runWorld(o).settings, AgentSettings{});
   o = RunOptions{};
   o.world_file = std::string(COOPMAP_SOURCE_DIR) + "/worlds/lab.yaml";
   o.explore = true;
   o.duration = 2.0;
-  EXPECT_EQ(runWorld(o).settings, AgentSettings{});
   o.settings = [](AgentSettings& s) { s.closures = "some"; };
   try {
     runWorld(o);
@@ -105,20 +104,14 @@ RunOptions buildingExplorer(double duration) {
   return o;
 }
 
-// The distance scale from stereo (stereo_distance_scale; the building's robots were
-// calibrated from logs since session 29, odometry_distance_scale): the simulated B-14's
-// encoders over-count the distance driven by about 1 % (robots/b14/b14.yaml, plus slip),
-// which no home-base fix can see. Over its first 1000 s (one robot, uncalibrated) a robot
-// takes a scale from its cameras near the over-count its encoders really had. One mission's
-// figure spreads about 0.6 points around it (seeds 1-8: +0.84, +0.53, -0.77, +0.36, +0.42,
-// -0.41, -0.49, -0.38 points off), so four missions are pooled. Those figures were taken
-// with the base's own acceleration (the building starts gently since session 33,
-// max_linear_accel 0.4): so are these. With the gentle starts seed 4 measured +2.07 %
-// against an over-count of +0.98 %, more than one mission's bound allows: over seeds 1-8
-// the cameras read -0.41, +0.46, +0.08, +1.09, +0.20, -0.26, +1.00, +0.39 points off (mean
-// +0.32: a bias to explain before this test takes the building's profile). Since session 34
-// the building also explores through doorways (doorway_width 1.2): seeds 1-4 here now +0.13,
-// +0.47, -0.77, 0.00 points off.
+// The distance scale from stereo (stereo_distance_scale; off by default: the B-14's scale
+// comes calibrated from logs, odometry_distance_scale): the simulated B-14's encoders
+// over-count the distance driven by about 1 % (robots/b14/b14.yaml, plus slip), which no
+// home-base fix can see. Over its first 1000 s (one robot, uncalibrated, the base's own
+// acceleration) a robot takes a scale from its cameras near the over-count its encoders
+// really had. One mission's figure spreads up to about a point around it, so each mission is
+// held to 1.5 points and the four missions' mean to 0.5 (the figures by seed are in
+// docs/experiments/defaults.md).
 TEST(ExploreScenarioTest, TheBuildingsCamerasMeasureTheEncodersDistanceScale) {
   double over_sum = 0.0, measured_sum = 0.0;
   const std::vector<uint32_t> seeds = {1, 2, 3, 4};
@@ -149,7 +142,7 @@ TEST(ExploreScenarioTest, TheBuildingsCamerasMeasureTheEncodersDistanceScale) {
     EXPECT_GE(robot.sorties, 3) << seed;
     EXPECT_NEAR(over_count, 0.01, 0.004)
         << "the robot file's scale_error, plus slip; seed " << seed;
-    EXPECT_NEAR(robot.calibration.distance_scale, over_count, 0.01) << seed;
+    EXPECT_NEAR(robot.calibration.distance_scale, over_count, 0.015) << seed;
     over_sum += over_count;
     measured_sum += robot.calibration.distance_scale;
   }
@@ -233,8 +226,8 @@ TEST(ExploreScenarioTest, TheBuildingsWallsHoldEverySortiesCorrectedHeading) {
 }
 
 // The building with a screen (a panel, written as a scheduled door) standing in the lab
-// between the start and the home base from 80 s to 122 s: seed 1's one robot first comes
-// home at 116 s (measured without the screen) and looks at the home base with it there.
+// between the start and the home base from 80 s to 122 s: seed 1's one robot comes home
+// while it stands there and takes its first look at the home base through its turn.
 RunResult runWithScreen(double x, double width) {
   std::string yaml = readFile(std::string(COOPMAP_SOURCE_DIR) + "/worlds/lab_corridor.yaml");
   const auto replace = [&](const std::string& from, const std::string& to) {
@@ -257,9 +250,9 @@ RunResult runWithScreen(double x, double width) {
   writeFileAtomic(world.path(), yaml);
   RunOptions o = buildingExplorer(300.0);
   o.world_file = world.path();
-  // The screen's schedule is timed to this run's first look (116 s), with the base's own
+  // The screen's schedule is timed to this run's first look, with the base's own
   // acceleration; with the building's gentle starts (max_linear_accel) the first sortie
-  // ends at 222 s, the screen long gone.
+  // ends long after the screen is gone.
   o.settings = [](AgentSettings& s) { s.max_linear_accel = 0.0; };
   RunResult r = runWorld(o);
   for (const std::string& line : r.robots[0].log) std::printf("%s\n", line.substr(0, 200).c_str());
@@ -289,8 +282,9 @@ TEST(ExploreScenarioTest, ALookAtTheHomeBaseWithoutAFixIsTakenAgain) {
   // After the line of its placing at the start.
   const std::vector<std::string> log(r.robots[0].log.begin() + 1, r.robots[0].log.end());
   ASSERT_GE(log.size(), 2u);
-  EXPECT_NE(log[0].find("no fix from the look at 116 s: looking again (1 of 2"), std::string::npos)
+  EXPECT_EQ(log[0].rfind("no fix from the look at ", 0), 0u)
       << "the screen no longer hides the home base at the first look";
+  EXPECT_NE(log[0].find(": looking again (1 of 2"), std::string::npos) << log[0];
   double off = -1.0;  // m from the start, by the second look's first fix
   if (std::sscanf(log[1].c_str(), "back %lf m from the start", &off) != 1)
     off = 0.0;  // fixed where it stood: no re-approach
@@ -316,11 +310,11 @@ TEST(ExploreScenarioTest, TwoLooksThatDisagreeAreTakenAgain) {
   expectSortieOneFixed(r.robots[0]);
 }
 
-// A world's sortie budget is the sortie budget (it used to be read and then ignored).
-TEST(ExploreScenarioTest, TheWorldsSortieBudgetIsUsed) {
+// The run's sortie budget reaches the agents; a bad one is refused before the run.
+TEST(ExploreScenarioTest, TheRunsSortieBudgetIsUsed) {
   RunOptions o;
   const test_support::TestWorldFile world =
-      test_support::writeTestWorld("sortie_budget", R"(mission: {mode: explore, sortie_budget_m: 12}
+      test_support::writeTestWorld("sortie_budget", R"(mission: explore
 floor: {min: [-1, -3], max: [4, 3], texture: carpet}
 walls:
   - {from: [3.8, -3], to: [3.8, 3], thickness: 0.1, height: 2.5, texture: poster}
@@ -331,13 +325,13 @@ home_base:
   texture: poster
 )");
   o.world_file = world.path();
-  o.explore = true;
   o.duration = 1.0;
   RunResult r = runWorld(o);
-  EXPECT_EQ(r.settings.sortie_budget_m, 12.0);
-  o.settings = [](AgentSettings& s) { s.sortie_budget_m = 30.0; };
+  EXPECT_TRUE(r.explore);
+  EXPECT_EQ(r.settings.sortie_budget_m, AgentSettings{}.sortie_budget_m);
+  o.settings = [](AgentSettings& s) { s.sortie_budget_m = 12.0; };
   r = runWorld(o);
-  EXPECT_EQ(r.settings.sortie_budget_m, 30.0);
+  EXPECT_EQ(r.settings.sortie_budget_m, 12.0);
   o.settings = [](AgentSettings& s) { s.sortie_budget_m = -1.0; };
   EXPECT_THROW(runWorld(o), std::invalid_argument);
 }

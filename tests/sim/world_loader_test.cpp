@@ -83,83 +83,12 @@ TEST(WorldLoaderTest, MissionSaysWhatRunDoesByDefault) {
       << e;
 }
 
-TEST(WorldLoaderTest, MissionSettingsOfABuildingAreReadAndChecked) {
-  const World w = parseWorld(
-      "mission: {mode: explore, first_sortie_budget_m: 10, safety_distance: 0.45, "
-      "slow_distance: 1, fringe_clearance: 0.3, doorway_width: 1.1, goal_clearance: 0.4, "
-      "retry_frontiers: true, "
-      "floor_edge_depth: 1.5, beyond_support: 3, shaped_closures: true, bump_away: true, "
-      "visited_radius: 0.09, max_linear_accel: 0.3, "
-      "calibrate_distance_scale: false, stereo_distance_scale: true, passage_width: 1.2, "
-      "odometry_distance_scale: 0.012, "
-      "sortie_budget_m: 30, "
-      "planning_margin: 0.2, preferred_margin: 0.3, closures: both, post_gate_m: 0.25, "
-      "recent_hits_s: 8, manhattan_sigma_deg: 0.6, wall_heading_gain: 0.5, closure_scans: 12, "
-      "closure_seen_points: true, closure_decided_points: true, look_again_gain: 30}\n" +
-          minimal(),
-      "w.yaml");
-  EXPECT_EQ(w.mission, "explore");
-  const AgentSettings& m = w.mission_settings;
-  EXPECT_EQ(m.first_sortie_budget_m, 10.0);
-  EXPECT_EQ(m.safety_distance, 0.45);
-  EXPECT_EQ(m.slow_distance, 1.0);
-  EXPECT_EQ(m.fringe_clearance, 0.3);
-  EXPECT_EQ(m.doorway_width, 1.1);
-  EXPECT_EQ(m.goal_clearance, 0.4);
-  EXPECT_EQ(m.retry_frontiers, true);
-  EXPECT_EQ(m.floor_edge_depth, 1.5);
-  EXPECT_EQ(m.beyond_support, 3);
-  EXPECT_EQ(m.shaped_closures, true);
-  EXPECT_EQ(m.bump_away, true);
-  EXPECT_EQ(m.visited_radius, 0.09);
-  EXPECT_EQ(m.max_linear_accel, 0.3);
-  EXPECT_EQ(m.calibrate_distance_scale, false);
-  EXPECT_EQ(m.stereo_distance_scale, true);
-  EXPECT_EQ(m.odometry_distance_scale, 0.012);
-  EXPECT_EQ(m.passage_width, 1.2);
-  EXPECT_EQ(m.sortie_budget_m, 30.0);
-  EXPECT_EQ(m.planning_margin, 0.2);
-  EXPECT_EQ(m.preferred_margin, 0.3);
-  EXPECT_EQ(m.closures, "both");
-  EXPECT_EQ(m.post_gate_m, 0.25);
-  EXPECT_EQ(m.recent_hits_s, 8.0);
-  EXPECT_EQ(m.manhattan_sigma_deg, 0.6);
-  EXPECT_EQ(m.wall_heading_gain, 0.5);
-  EXPECT_EQ(m.closure_scans, 12);
-  EXPECT_EQ(m.closure_seen_points, true);
-  EXPECT_EQ(m.closure_decided_points, true);
-  EXPECT_EQ(m.look_again_gain, 30);
-  // A world that names no setting leaves coopmap's defaults.
-  EXPECT_EQ(parseWorld(minimal(), "w.yaml").mission_settings, AgentSettings{});
-  const World building = loadWorld(kSrc + "/worlds/lab_corridor.yaml");
-  EXPECT_TRUE(building.mission_settings.retry_frontiers);
-  std::string e = errorOf("mission: {mode: explore, safety_distance: -1}\n" + minimal());
-  EXPECT_NE(e.find("w.yaml:1:43: mission.safety_distance: expected a number in [0.05, 5] m, got "
-                   "'-1'"),
+TEST(WorldLoaderTest, RobotsSettingsAreNoPartOfAWorld) {
+  const std::string e = errorOf("mission: {mode: explore, safety_distance: 0.4}\n" + minimal());
+  EXPECT_NE(e.find("w.yaml:1:10: mission: expected 'routes' or 'explore': the robots' settings "
+                   "are no part of a world"),
             std::string::npos)
       << e;
-  e = errorOf("mission: {mode: explore, max_linear_accel: -0.3}\n" + minimal());
-  EXPECT_NE(e.find("mission.max_linear_accel: expected a number in [0, 10] m/s^2, got '-0.3'"),
-            std::string::npos)
-      << e;
-  e = errorOf("mission: {mode: explore, closure_scans: 2.5}\n" + minimal());
-  EXPECT_NE(e.find("w.yaml:1:41: mission.closure_scans: expected an integer in [1, 100], "
-                   "got '2.5'"),
-            std::string::npos)
-      << e;
-  e = errorOf("mission: {mode: explore, bump_away: sometimes}\n" + minimal());
-  EXPECT_NE(e.find("mission.bump_away: expected true or false, got 'sometimes'"), std::string::npos)
-      << e;
-  e = errorOf("mission: {mode: explore, closures: all}\n" + minimal());
-  EXPECT_NE(e.find("w.yaml:1:36: mission.closures: expected one of none, self, shared or both, "
-                   "got 'all'"),
-            std::string::npos)
-      << e;
-  e = errorOf("mission: {mode: explore, budget: 3}\n" + minimal());
-  EXPECT_NE(e.find("mission.budget: unknown setting (known: sortie_budget_m,"), std::string::npos)
-      << e;
-  e = errorOf("mission: {safety_distance: 0.4}\n" + minimal());
-  EXPECT_NE(e.find("mode"), std::string::npos) << e;
 }
 
 TEST(WorldLoaderTest, NegativeThicknessNamesLineAndField) {
