@@ -1,5 +1,6 @@
 #include "core/correction/traverse_log.h"
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <stdexcept>
@@ -35,6 +36,17 @@ TraverseLog sampleLog() {
     log.entries.push_back(e);
   }
   return log;
+}
+
+// The bytes of a version 1 or 2 log: the same records, no end record, the header's version
+// (and its checksum) made again.
+std::string asOldVersion(std::string bytes, char version) {
+  bytes.resize(bytes.size() - 12);  // the end record
+  bytes[8] = version;
+  // Header: 8 magic + 4 version + 4 name length + 4 name, then its CRC.
+  const uint32_t header_crc = crc32Of(bytes.data(), 20);
+  for (int i = 0; i < 4; ++i) bytes[20 + i] = static_cast<char>((header_crc >> (8 * i)) & 0xff);
+  return bytes;
 }
 
 std::string errorOf(const std::string& bytes) {
@@ -89,22 +101,48 @@ TEST(TraverseLogTest, OnlyHitsCarryTheFloorEdgeMark) {
   EXPECT_FALSE(back.entries[1].scan.readings[4].floor_edge);
 }
 
-TEST(TraverseLogTest, ReadsVersionOneLogs) {
-  // Version 1 had no floor-edge bit: the same bytes with version 1 in the header (and its
-  // checksum made again) read back alike, every reading off the floor's end.
+TEST(TraverseLogTest, ReadsVersionOneAndTwoLogs) {
+  // Version 1 had no floor-edge bit and neither it nor version 2 an end record: the same
+  // records read back alike.
   TraverseLog log = sampleLog();
+  const TraverseLog two = decodeTraverseLog(asOldVersion(encodeTraverseLog(log), 2), "memory");
+  ASSERT_EQ(two.entries.size(), 3u);
+  EXPECT_TRUE(two.entries[0].scan.readings[4].floor_edge);
   for (TraverseEntry& e : log.entries)
     for (RadialReading& r : e.scan.readings) r.floor_edge = false;
-  std::string bytes = encodeTraverseLog(log);
-  bytes[8] = 1;
-  // Header: 8 magic + 4 version + 4 name length + 4 name, then its CRC.
-  const uint32_t header_crc = crc32Of(bytes.data(), 20);
-  for (int i = 0; i < 4; ++i) bytes[20 + i] = static_cast<char>((header_crc >> (8 * i)) & 0xff);
-  const TraverseLog back = decodeTraverseLog(bytes, "memory");
+  const TraverseLog back = decodeTraverseLog(asOldVersion(encodeTraverseLog(log), 1), "memory");
   ASSERT_EQ(back.entries.size(), 3u);
   EXPECT_EQ(back.entries[2].scan.readings[4].kind, RadialKind::kHit);
   EXPECT_FALSE(back.entries[2].scan.readings[4].floor_edge);
   EXPECT_EQ(back.entries[2].scan.readings[5].kind, RadialKind::kBeyond);
+}
+
+// A file cut exactly between records is no shorter log: its end record is missing.
+TEST(TraverseLogTest, ACutAtARecordBoundaryIsRefused) {
+  const std::string bytes = encodeTraverseLog(sampleLog());
+  EXPECT_EQ(errorOf(bytes.substr(0, bytes.size() - 12)),
+            "run/traverse_jose.traverse: no end record after record 3 (the file was cut short)");
+  EXPECT_EQ(errorOf(bytes.substr(0, 262)),
+            "run/traverse_jose.traverse: no end record after record 1 (the file was cut short)");
+  EXPECT_EQ(errorOf(bytes + "x"), "run/traverse_jose.traverse: end record at byte " +
+                                      std::to_string(bytes.size() - 12) + ": 1 bytes after it");
+}
+
+// Values no robot logs, under a valid checksum, are refused naming the record and field.
+TEST(TraverseLogTest, ValuesNoRobotLogsAreRefused) {
+  TraverseLog nan_pose = sampleLog();
+  nan_pose.entries[1].scan.odometry.y = std::nan("");
+  EXPECT_EQ(errorOf(encodeTraverseLog(nan_pose)),
+            "run/traverse_jose.traverse: record 1 at byte 262: odometry y nan, expected a finite "
+            "number in [-100000, 100000]");
+  TraverseLog far = sampleLog();
+  far.entries[2].scan.readings[1].range = 1e300;
+  EXPECT_NE(errorOf(encodeTraverseLog(far)).find(": reading range 1e+300, expected a finite"),
+            std::string::npos);
+  TraverseLog back_in_time = sampleLog();
+  back_in_time.entries[2].scan.stamp = 0.2;  // record 1 was taken at 0.433 s
+  EXPECT_NE(errorOf(encodeTraverseLog(back_in_time)).find(": stamp 0.2, expected a finite"),
+            std::string::npos);
 }
 
 TEST(TraverseLogTest, SavesAndLoadsAFile) {
@@ -154,7 +192,7 @@ TEST(TraverseLogTest, RejectsOtherVersions) {
   std::string bytes = encodeTraverseLog(sampleLog());
   bytes[8] = 7;
   EXPECT_EQ(errorOf(bytes),
-            "run/traverse_jose.traverse: traverse log version 7 (this build reads 1 to 2)");
+            "run/traverse_jose.traverse: traverse log version 7 (this build reads 1 to 3)");
 }
 
 TEST(TraverseLogTest, SegmentOfCommands) {
