@@ -1,4 +1,5 @@
 // coopmap: the command-line program.
+#include <cmath>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -13,6 +14,7 @@
 #include <CLI/Formatter.hpp>
 
 #include "core/agent/agent_settings.h"
+#include "core/io/atomic_file.h"
 #include "core/io/json_writer.h"
 #include "core/io/robot_outputs.h"
 #include "core/io/yaml_reader.h"
@@ -30,6 +32,7 @@
 #include "sim/runner/world_run.h"
 #include "sim/runner/world_run_outputs.h"
 #include "sim/world/world.h"
+#include "sim/world/world_generator.h"
 
 int main(int argc, char** argv) {
   CLI::App app{
@@ -447,6 +450,25 @@ int main(int argc, char** argv) {
   cmd_calibrate->add_option("--out", calibrate.out_file, "Calibration file to write (YAML)")
       ->required();
 
+  // Options are taken as text and checked here, so that every bad value exits with code 2
+  // and a message naming the option.
+  std::string gen_seed, gen_area, gen_family, gen_out;
+  auto* cmd_world = app.add_subcommand("world", "World files");
+  cmd_world->require_subcommand(1);
+  auto* cmd_generate = cmd_world->add_subcommand(
+      "generate",
+      "Generate a world file: an office-like building (100-600 m^2) the robots have never "
+      "seen, with rooms, doorways, furniture, low-texture walls, people walking the "
+      "corridors, slippery patches, and a start room with the home base and the robots jose "
+      "and eric. Each world is checked (it loads; all floor reachable; starts clear; home "
+      "base in view) before it is written; the same options write the same bytes.");
+  cmd_generate->add_option("--seed", gen_seed, "Seed of every choice (a non-negative integer)");
+  cmd_generate->add_option("--out", gen_out, "World file to write (YAML)");
+  cmd_generate->add_option("--family", gen_family,
+                           "corridor, lt, loop or open (default: drawn from the seed)");
+  cmd_generate->add_option("--area", gen_area,
+                           "Floor area in m^2, 100-600 (default: drawn from the seed)");
+
   CLI11_PARSE(app, argc, argv);
 
   try {
@@ -461,6 +483,41 @@ int main(int argc, char** argv) {
         std::printf("outputs in %s\n", robot_options.out_dir.c_str());
       }
       return code;
+    }
+    if (cmd_generate->parsed()) {
+      coopmap::sim::WorldGeneratorOptions gen;
+      auto number = [](const std::string& option, const std::string& text, const char* expected) {
+        size_t used = 0;
+        double value = 0.0;
+        try {
+          value = std::stod(text, &used);
+        } catch (const std::exception&) {
+          used = 0;
+        }
+        if (text.empty() || used != text.size() || !std::isfinite(value))
+          throw coopmap::ConfigError(option + ": expected " + expected + ", got '" + text + "'");
+        return value;
+      };
+      if (gen_seed.empty()) throw coopmap::ConfigError("--seed: expected a seed, none given");
+      if (gen_seed.find_first_not_of("0123456789") != std::string::npos || gen_seed.size() > 19)
+        throw coopmap::ConfigError("--seed: expected a non-negative integer, got '" + gen_seed +
+                                   "'");
+      gen.seed = std::stoull(gen_seed);
+      gen.family = gen_family;
+      if (cmd_generate->count("--family") && gen_family.empty())
+        throw coopmap::ConfigError("--family: expected corridor, lt, loop or open, got ''");
+      if (!gen_area.empty()) gen.area = number("--area", gen_area, "a floor area in m^2");
+      gen.out_file = gen_out;
+      gen.validate();
+      const coopmap::sim::GeneratedWorld w = coopmap::sim::generateWorld(gen);
+      try {
+        coopmap::writeFileAtomic(gen_out, w.yaml);
+      } catch (const std::exception& e) {
+        throw coopmap::ConfigError("--out: expected a writable file path: " +
+                                   std::string(e.what()));
+      }
+      std::printf("%s: %s building, %.1f m^2 of floor, %d rooms, %d doorways\n", gen_out.c_str(),
+                  w.family.c_str(), w.floor_area, w.rooms, w.doors);
     }
     if (cmd_calibrate->parsed()) std::printf("%s", coopmap::runCalibrate(calibrate).report.c_str());
     if (cmd_traverse->parsed()) coopmap::printTraverseSummary(trav, coopmap::runTraverse(trav));

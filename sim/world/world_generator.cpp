@@ -1,0 +1,943 @@
+#include "sim/world/world_generator.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <random>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+#include <tuple>
+#include <utility>
+
+#include <Eigen/Core>
+
+#include "core/io/yaml_reader.h"
+#include "sim/world/world.h"
+#include "sim/world/world_checks.h"
+
+namespace coopmap::sim {
+
+namespace {
+
+// The layout is drawn on a grid of decimetres: every wall line and doorway edge lies on it.
+constexpr double kDm = 0.1;
+constexpr double kHalfWall = 0.05;  // m, walls are 0.1 m thick, centred on the zone boundaries
+constexpr int kAttempts = 64;
+
+// Uniform draws from std::mt19937_64 words, the same on every platform.
+class Draw {
+ public:
+  explicit Draw(uint64_t seed) : engine_(seed) {}
+  double uniform(double a, double b) {
+    return a + (b - a) * static_cast<double>(engine_() >> 11) * 0x1.0p-53;
+  }
+  int integer(int a, int b) {  // in [a, b]
+    if (b < a) throw std::logic_error("world generator: empty range drawn");
+    return a + static_cast<int>(engine_() % static_cast<uint64_t>(b - a + 1));
+  }
+  bool chance(double p) { return uniform(0.0, 1.0) < p; }
+
+ private:
+  std::mt19937_64 engine_;
+};
+
+uint64_t splitmix(uint64_t x) {
+  x += 0x9E3779B97F4A7C15ull;
+  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
+  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
+  return x ^ (x >> 31);
+}
+
+// A rectangle of the layout grid, in dm.
+struct Rect {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+};
+
+// A rectangle in metres.
+struct Box2 {
+  double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  Box2 grown(double m) const { return {x0 - m, y0 - m, x1 + m, y1 + m}; }
+};
+
+Box2 metres(const Rect& r) { return {r.x0 * kDm, r.y0 * kDm, r.x1 * kDm, r.y1 * kDm}; }
+
+double gap(const Box2& a, const Box2& b) {
+  const double dx = std::max({0.0, a.x0 - b.x1, b.x0 - a.x1});
+  const double dy = std::max({0.0, a.y0 - b.y1, b.y0 - a.y1});
+  return std::hypot(dx, dy);
+}
+bool overlaps(const Box2& a, const Box2& b) {
+  return a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1;
+}
+
+// A band of rooms beside a corridor, split into rooms along x (along_x) or y.
+struct Strip {
+  Rect r;
+  bool along_x = true;
+  bool start = false;  // holds the start room
+};
+
+// A family's shape at one scale: the corridors (one zone, or the open plan) and room strips.
+struct Plan {
+  std::vector<Rect> corridors;
+  std::vector<Strip> strips;
+  bool open_plan = false;
+  bool ring = false;  // the corridors form a loop
+  Rect aisle;         // open plan: the band kept clear for walking
+  std::string shape;  // for the header comment
+};
+
+enum class ZoneKind { kCorridor, kRoom, kOpen };
+struct Zone {
+  ZoneKind kind = ZoneKind::kRoom;
+  std::vector<Rect> rects;
+};
+
+// A doorway: the wall edges [from, to) (dm) of a grid line removed between zones a and b.
+struct Doorway {
+  int a = 0, b = 0;
+  bool vertical = false;  // on a line x = line
+  int line = 0, from = 0, to = 0;
+  bool panel = false;  // an open door panel is declared
+  Eigen::Vector2d centre() const {
+    const double mid = 0.5 * (from + to) * kDm;
+    return vertical ? Eigen::Vector2d(line * kDm, mid) : Eigen::Vector2d(mid, line * kDm);
+  }
+  double width() const { return (to - from) * kDm; }
+};
+
+struct Layout {
+  std::vector<Zone> zones;
+  std::vector<Doorway> doors;
+  int start_room = -1;
+  int start_door = -1;
+  int rooms = 0;
+};
+
+struct Furniture {
+  Box2 footprint;
+  double height = 0.75;
+  std::string texture, label;
+};
+
+// Every draw of a world happens in this order: the shape, the scale, the rooms and doors,
+// the home base, furniture, textures, people and floor patches.
+struct Building {
+  Plan plan;
+  Layout layout;
+  std::vector<WallSpec> walls;
+  std::vector<std::pair<WallSpec, std::string>> partitions;
+  std::vector<Furniture> furniture;
+  HomeBaseSpec home_base;
+  std::vector<std::pair<std::string, Pose2>> robots;
+  std::vector<PersonSpec> people;
+  std::vector<SurfaceSpec> surfaces;
+  double floor_area = 0.0;
+};
+
+// Area (m^2) of the union of the zone rectangles grown to the walls' outer faces, on a
+// 0.05 m raster (exact: every edge lies on it).
+double floorArea(const std::vector<Rect>& rects) {
+  if (rects.empty()) return 0.0;
+  int x0 = rects[0].x0, y0 = rects[0].y0, x1 = rects[0].x1, y1 = rects[0].y1;
+  for (const Rect& r : rects) {
+    x0 = std::min(x0, r.x0), y0 = std::min(y0, r.y0);
+    x1 = std::max(x1, r.x1), y1 = std::max(y1, r.y1);
+  }
+  const int w = 2 * (x1 - x0) + 2, h = 2 * (y1 - y0) + 2;  // half-dm cells
+  std::vector<uint8_t> cells(static_cast<size_t>(w) * h, 0);
+  for (const Rect& r : rects)
+    for (int j = 2 * (r.y0 - y0); j < 2 * (r.y1 - y0) + 2; ++j)
+      for (int i = 2 * (r.x0 - x0); i < 2 * (r.x1 - x0) + 2; ++i)
+        cells[static_cast<size_t>(j) * w + i] = 1;
+  size_t n = 0;
+  for (uint8_t c : cells) n += c;
+  return static_cast<double>(n) * 0.0025;
+}
+
+std::vector<Rect> planRects(const Plan& p) {
+  std::vector<Rect> all = p.corridors;
+  for (const Strip& s : p.strips) all.push_back(s.r);
+  return all;
+}
+
+// The smallest length (dm) in [lo, hi] whose plan has at least `target` m^2 of floor, or the
+// one below it if that is nearer.
+template <typename MakePlan>
+Plan planForArea(const MakePlan& make, int lo, int hi, double target) {
+  auto area = [&](int length) { return floorArea(planRects(make(length))); };
+  int a = lo, b = hi;
+  while (a < b) {
+    const int m = (a + b) / 2;
+    if (area(m) >= target)
+      b = m;
+    else
+      a = m + 1;
+  }
+  if (a > lo && target - area(a - 1) < area(a) - target) --a;
+  return make(a);
+}
+
+// A strip of rooms needs at least this length (dm); shorter ones are left out of the plan.
+constexpr int kMinStrip = 30;
+void addStrip(Plan& p, Rect r, bool along_x, bool start = false) {
+  if ((along_x ? r.x1 - r.x0 : r.y1 - r.y0) >= kMinStrip) p.strips.push_back({r, along_x, start});
+}
+
+Plan corridorFamily(Draw& d, double target) {
+  const int cw = d.integer(18, 24), south = d.integer(48, 60), north = d.integer(40, 60);
+  bool two = d.chance(0.6);
+  const double one_sided = target / ((cw + south) * kDm);
+  if (!two && one_sided > 45.0) two = true;
+  if (two && target / ((cw + south + north) * kDm) < 9.0) two = false;
+  auto make = [=](int length) {
+    Plan p;
+    p.corridors = {{0, 0, length, cw}};
+    addStrip(p, {0, -south, length, 0}, true, true);
+    if (two) addStrip(p, {0, cw, length, cw + north}, true);
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "a %.1f m corridor with rooms on %s", cw * kDm,
+                  two ? "both sides" : "one side");
+    p.shape = buf;
+    return p;
+  };
+  return planForArea(make, 50, 1200, target);
+}
+
+Plan ltFamily(Draw& d, double target) {
+  const int cw = d.integer(18, 24), south = d.integer(48, 60), north = d.integer(40, 60);
+  const int side = d.integer(40, 60);
+  const bool tee = d.chance(0.5);
+  const double ratio = d.uniform(0.5, 1.0), junction = d.uniform(0.35, 0.65);
+  const bool north_left = d.chance(0.8), north_right = d.chance(0.8);
+  const bool left = d.chance(0.8), right = d.chance(0.7);
+  auto make = [=](int la) {
+    Plan p;
+    const int lb = std::max(30, static_cast<int>(std::lround(ratio * la)));
+    const int bx = tee ? static_cast<int>(std::lround(junction * la)) : la - cw;
+    p.corridors = {{0, 0, la, cw}, {bx, cw, bx + cw, cw + lb}};
+    addStrip(p, {0, -south, la, 0}, true, true);
+    if (north_left) addStrip(p, {0, cw, bx, cw + north}, true);
+    if (tee && north_right) addStrip(p, {bx + cw, cw, la, cw + north}, true);
+    if (left) addStrip(p, {bx - side, north_left ? cw + north : cw, bx, cw + lb}, false);
+    if (right) {
+      const int y0 = tee ? (north_right ? cw + north : cw) : 0;
+      addStrip(p, {bx + cw, y0, bx + cw + side, cw + lb}, false);
+    }
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "an %s of %.1f m corridors with rooms along them",
+                  tee ? "T" : "L", cw * kDm);
+    p.shape = buf;
+    return p;
+  };
+  return planForArea(make, 60, 900, target);
+}
+
+Plan loopFamily(Draw& d, double target) {
+  const int cw = d.integer(18, 22), inner = d.integer(40, 55), south = d.integer(48, 60);
+  const int north = d.integer(40, 55);
+  const int rows = target >= 280.0 ? 2 : 1;
+  const bool north_rooms = target >= 350.0 && d.chance(0.6);
+  const int h = 2 * cw + rows * inner;
+  auto make = [=](int w) {
+    Plan p;
+    p.ring = true;
+    p.corridors = {{0, 0, w, cw}, {0, h - cw, w, h}, {0, cw, cw, h - cw}, {w - cw, cw, w, h - cw}};
+    for (int k = 0; k < rows; ++k)
+      addStrip(p, {cw, cw + k * inner, w - cw, cw + (k + 1) * inner}, true);
+    addStrip(p, {0, -south, w, 0}, true, true);
+    if (north_rooms) addStrip(p, {0, h, w, h + north}, true);
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "a %.1f m corridor loop with rooms inside and outside it",
+                  cw * kDm);
+    p.shape = buf;
+    return p;
+  };
+  return planForArea(make, 2 * cw + kMinStrip, 900, target);
+}
+
+Plan openFamily(Draw& d, double target) {
+  const int depth = d.integer(80, 140), south = d.integer(48, 60), north = d.integer(40, 55);
+  const bool north_rooms = target >= 350.0 && d.chance(0.5);
+  const int aisle = d.integer(30, depth - 50);
+  auto make = [=](int w) {
+    Plan p;
+    p.open_plan = true;
+    p.corridors = {{0, 0, w, depth}};
+    p.aisle = {0, aisle, w, aisle + 20};
+    addStrip(p, {0, -south, w, 0}, true, true);
+    if (north_rooms) addStrip(p, {0, depth, w, depth + north}, true);
+    p.shape = "an open plan with partitions and furniture islands, rooms along its side";
+    return p;
+  };
+  return planForArea(make, 80, 900, target);
+}
+
+// Mirrors and turns the plan (x -> -x, y -> -y, x <-> y) so the start room and corridors
+// face any way.
+Rect transformed(Rect r, bool flip_x, bool flip_y, bool swap) {
+  if (flip_x) r = {-r.x1, r.y0, -r.x0, r.y1};
+  if (flip_y) r = {r.x0, -r.y1, r.x1, -r.y0};
+  if (swap) r = {r.y0, r.x0, r.y1, r.x1};
+  return r;
+}
+void transform(Plan& p, Draw& d) {
+  const bool fx = d.chance(0.5), fy = d.chance(0.5), sw = d.chance(0.5);
+  for (Rect& r : p.corridors) r = transformed(r, fx, fy, sw);
+  for (Strip& s : p.strips) {
+    s.r = transformed(s.r, fx, fy, sw);
+    if (sw) s.along_x = !s.along_x;
+  }
+  p.aisle = transformed(p.aisle, fx, fy, sw);
+  // Shift so that the building starts at (0, 0).
+  int x0 = p.corridors[0].x0, y0 = p.corridors[0].y0;
+  for (const Rect& r : planRects(p)) x0 = std::min(x0, r.x0), y0 = std::min(y0, r.y0);
+  auto shift = [&](Rect& r) { r = {r.x0 - x0, r.y0 - y0, r.x1 - x0, r.y1 - y0}; };
+  for (Rect& r : p.corridors) shift(r);
+  for (Strip& s : p.strips) shift(s.r);
+  shift(p.aisle);
+}
+
+// Splits `length` (dm) into room widths in [lo, hi], the first at least first_lo; a piece too
+// short to split further stays whole (up to first_lo + lo) or joins the one before.
+std::vector<int> partition(Draw& d, int length, int lo, int hi, int first_lo) {
+  std::vector<int> out;
+  int left = length;
+  while (left > 0) {
+    const int lo_here = out.empty() ? first_lo : lo;
+    if (left <= hi || left < lo_here + lo) {
+      if (left < lo && !out.empty())
+        out.back() += left;
+      else
+        out.push_back(left);
+      break;
+    }
+    const int w = d.integer(lo_here, std::min(hi, left - lo));
+    out.push_back(w);
+    left -= w;
+  }
+  return out;
+}
+
+// Adds a doorway 0.9-1.2 m wide (between wall ends) on the longest boundary zones a and b
+// share, at least 0.5 m from its ends. False if they share none long enough.
+bool addDoor(Layout& l, int a, int b, Draw& d) {
+  const int width = d.integer(9, 12);
+  Doorway best;
+  int best_length = 0;
+  for (const Rect& ra : l.zones[a].rects)
+    for (const Rect& rb : l.zones[b].rects) {
+      if (ra.x1 == rb.x0 || ra.x0 == rb.x1) {
+        const int from = std::max(ra.y0, rb.y0), to = std::min(ra.y1, rb.y1);
+        if (to - from > best_length)
+          best = {a, b, true, ra.x1 == rb.x0 ? ra.x1 : ra.x0, from, to}, best_length = to - from;
+      }
+      if (ra.y1 == rb.y0 || ra.y0 == rb.y1) {
+        const int from = std::max(ra.x0, rb.x0), to = std::min(ra.x1, rb.x1);
+        if (to - from > best_length)
+          best = {a, b, false, ra.y1 == rb.y0 ? ra.y1 : ra.y0, from, to}, best_length = to - from;
+      }
+    }
+  if (best_length < width + 10) return false;
+  best.from += 5 + d.integer(0, best_length - width - 10);
+  best.to = best.from + width;
+  best.panel = d.chance(0.5);
+  l.doors.push_back(best);
+  return true;
+}
+
+Layout realize(const Plan& p, Draw& d) {
+  Layout l;
+  l.zones.push_back({p.open_plan ? ZoneKind::kOpen : ZoneKind::kCorridor, p.corridors});
+  for (const Strip& s : p.strips) {
+    const Rect& r = s.r;
+    const std::vector<int> widths =
+        partition(d, s.along_x ? r.x1 - r.x0 : r.y1 - r.y0, 36, 65, s.start ? 48 : 36);
+    const int depth = s.along_x ? r.y1 - r.y0 : r.x1 - r.x0;
+    std::vector<int> wide;  // rooms big enough to hold the home base
+    int at = s.along_x ? r.x0 : r.y0;
+    const int first = static_cast<int>(l.zones.size());
+    for (size_t k = 0; k < widths.size(); ++k) {
+      const Rect room =
+          s.along_x ? Rect{at, r.y0, at + widths[k], r.y1} : Rect{r.x0, at, r.x1, at + widths[k]};
+      at += widths[k];
+      if (widths[k] >= 48 && depth >= 48) wide.push_back(static_cast<int>(l.zones.size()));
+      l.zones.push_back({ZoneKind::kRoom, {room}});
+      ++l.rooms;
+    }
+    if (s.start && !wide.empty())
+      l.start_room = wide[static_cast<size_t>(d.integer(0, static_cast<int>(wide.size()) - 1))];
+    for (int z = first; z < static_cast<int>(l.zones.size()); ++z) {
+      const size_t doors_before = l.doors.size();
+      const bool to_corridor = addDoor(l, z, 0, d);
+      if (!to_corridor && z > first) addDoor(l, z, z - 1, d);
+      if (z == l.start_room && l.doors.size() > doors_before)
+        l.start_door = static_cast<int>(doors_before);
+      if (to_corridor && z > first && d.chance(0.25)) addDoor(l, z, z - 1, d);
+    }
+  }
+  return l;
+}
+
+// Walls along every boundary between different zones (or a zone and the outside), less the
+// doorways, merged into straight runs. Each pair of zones draws its wall texture once.
+std::vector<WallSpec> wallsOf(const Layout& l, double height, Draw& d) {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  for (const Zone& z : l.zones)
+    for (const Rect& r : z.rects) {
+      x0 = std::min(x0, r.x0), y0 = std::min(y0, r.y0);
+      x1 = std::max(x1, r.x1), y1 = std::max(y1, r.y1);
+    }
+  const int w = x1 - x0, h = y1 - y0;
+  std::vector<int> id(static_cast<size_t>(w) * h, 0);
+  for (size_t z = 0; z < l.zones.size(); ++z)
+    for (const Rect& r : l.zones[z].rects)
+      for (int j = r.y0; j < r.y1; ++j)
+        for (int i = r.x0; i < r.x1; ++i) {
+          int& cell = id[static_cast<size_t>(j - y0) * w + (i - x0)];
+          if (cell != 0) throw std::logic_error("world generator: zones overlap");
+          cell = static_cast<int>(z) + 1;
+        }
+  auto zoneAt = [&](int i, int j) {
+    if (i < x0 || j < y0 || i >= x1 || j >= y1) return 0;
+    return id[static_cast<size_t>(j - y0) * w + (i - x0)];
+  };
+  std::set<std::tuple<bool, int, int>> open;
+  for (const Doorway& dw : l.doors)
+    for (int k = dw.from; k < dw.to; ++k) open.insert({dw.vertical, dw.line, k});
+
+  std::map<std::pair<int, int>, std::string> textures;
+  auto textureOf = [&](int a, int b) {
+    const auto key = std::minmax(a, b);
+    auto it = textures.find(key);
+    if (it != textures.end()) return it->second;
+    const bool corridor = (a > 0 && l.zones[a - 1].kind != ZoneKind::kRoom) ||
+                          (b > 0 && l.zones[b - 1].kind != ZoneKind::kRoom);
+    const double u = d.uniform(0.0, 1.0);
+    const std::string t = u < (corridor ? 0.35 : 0.2) ? "plaster" : u < 0.65 ? "brick" : "poster";
+    return textures[key] = t;
+  };
+
+  std::vector<WallSpec> walls;
+  auto emit = [&](bool vertical, int line, int from, int to, int a, int b) {
+    WallSpec wall;
+    wall.from = vertical ? Eigen::Vector2d(line * kDm, from * kDm)
+                         : Eigen::Vector2d(from * kDm, line * kDm);
+    wall.to =
+        vertical ? Eigen::Vector2d(line * kDm, to * kDm) : Eigen::Vector2d(to * kDm, line * kDm);
+    wall.thickness = 2 * kHalfWall;
+    wall.height = height;
+    wall.texture = textureOf(a, b);
+    walls.push_back(wall);
+  };
+  for (int vertical = 1; vertical >= 0; --vertical) {
+    const int lines_from = vertical ? x0 : y0, lines_to = vertical ? x1 : y1;
+    const int along_from = vertical ? y0 : x0, along_to = vertical ? y1 : x1;
+    for (int line = lines_from; line <= lines_to; ++line) {
+      int run = 0, pa = 0, pb = 0;
+      bool in_run = false;
+      for (int k = along_from; k <= along_to; ++k) {
+        int a = 0, b = 0;
+        bool wall = false;
+        if (k < along_to) {
+          a = vertical ? zoneAt(line - 1, k) : zoneAt(k, line - 1);
+          b = vertical ? zoneAt(line, k) : zoneAt(k, line);
+          wall = a != b && !open.count({vertical != 0, line, k});
+        }
+        const bool same = wall && in_run && std::minmax(a, b) == std::minmax(pa, pb);
+        if (in_run && !same) {
+          emit(vertical != 0, line, run, k, pa, pb);
+          in_run = false;
+        }
+        if (wall && !in_run) run = k, pa = a, pb = b, in_run = true;
+      }
+    }
+  }
+  return walls;
+}
+
+// Places the home base and the robots in the start room: the robots' backs to the wall
+// opposite the room's door, the home base between them and the door, its corners 1.4 m
+// apart opening towards them. Each robot stands 1.6-2.4 m from the home base's middle, 18-26
+// degrees off its axis, facing the middle, well inside both corners' openings.
+bool placeStart(Building& b, Draw& d) {
+  const Layout& l = b.layout;
+  if (l.start_room < 0 || l.start_door < 0) return false;
+  const Rect& room = l.zones[l.start_room].rects[0];
+  const Doorway& door = l.doors[l.start_door];
+  Eigen::Vector2d f;  // from the back wall towards the door
+  if (door.vertical)
+    f = {door.line == room.x0 ? -1.0 : 1.0, 0.0};
+  else
+    f = {0.0, door.line == room.y0 ? -1.0 : 1.0};
+  const Eigen::Vector2d lat(-f.y(), f.x());
+  const Box2 m = metres(room);
+  const Eigen::Vector2d centre(0.5 * (m.x0 + m.x1), 0.5 * (m.y0 + m.y1));
+  const double depth = std::abs(f.x()) * (m.x1 - m.x0) + std::abs(f.y()) * (m.y1 - m.y0) - 0.1;
+  const double width = std::abs(lat.x()) * (m.x1 - m.x0) + std::abs(lat.y()) * (m.y1 - m.y0) - 0.1;
+  const Eigen::Vector2d back = centre - f * (0.5 * depth);  // on the back wall's face
+
+  const double a = d.uniform(18.0, 26.0) * M_PI / 180.0;
+  const double r_min = std::max({1.6, 0.85 / (std::cos(a) - std::sin(a)), 0.55 / std::sin(a)});
+  const double u_robots = d.uniform(0.85, 1.1);
+  const double r_max = std::min(2.4, (depth - 1.3 - u_robots) / std::cos(a));
+  if (r_max < r_min) return false;
+  const double r = d.uniform(r_min, std::min(r_max, std::max(r_min, 2.3)));
+  const double slack = std::min(0.3, 0.5 * width - 1.14 - 0.8);
+  const double v = slack > 0.0 ? d.uniform(-slack, slack) : 0.0;
+  if (0.5 * width - std::abs(v) - r * std::sin(a) < 0.6) return false;
+
+  const Eigen::Vector2d middle = back + f * (u_robots + r * std::cos(a)) + lat * v;
+  b.home_base.arm_length = 0.6;
+  b.home_base.thickness = 0.04;
+  b.home_base.height = 1.2;
+  b.home_base.texture = "landmark";
+  const double facing = std::atan2(-f.y(), -f.x());
+  b.home_base.corners = {{middle - 0.7 * lat, facing}, {middle + 0.7 * lat, facing}};
+  for (const auto& [name, side] : {std::pair{"jose", -1.0}, std::pair{"eric", 1.0}}) {
+    const Eigen::Vector2d p = middle - f * (r * std::cos(a)) + lat * (side * r * std::sin(a));
+    const Eigen::Vector2d to = middle - p;
+    b.robots.push_back({name, Pose2(p.x(), p.y(), std::atan2(to.y(), to.x()))});
+  }
+  return true;
+}
+
+// Furniture keeps clear of doorways (1.6 m on both sides of each) and of the home base and
+// the robots' starts.
+std::vector<Box2> keepOuts(const Building& b) {
+  std::vector<Box2> out;
+  for (const Doorway& dw : b.layout.doors) {
+    const Eigen::Vector2d c = dw.centre();
+    const double half = 0.5 * dw.width() + 0.4, deep = 1.6;
+    out.push_back(dw.vertical ? Box2{c.x() - deep, c.y() - half, c.x() + deep, c.y() + half}
+                              : Box2{c.x() - half, c.y() - deep, c.x() + half, c.y() + deep});
+  }
+  Box2 start{1e9, 1e9, -1e9, -1e9};
+  auto include = [&](const Eigen::Vector2d& p) {
+    start = {std::min(start.x0, p.x()), std::min(start.y0, p.y()), std::max(start.x1, p.x()),
+             std::max(start.y1, p.y())};
+  };
+  for (const auto& c : b.home_base.corners) include(c.position);
+  for (const auto& robot : b.robots) include(robot.second.translation());
+  out.push_back(start.grown(1.2));
+  return out;
+}
+
+bool fits(const Box2& box, const std::vector<Box2>& keep_out, const std::vector<Box2>& placed,
+          double spacing) {
+  for (const Box2& k : keep_out)
+    if (overlaps(box, k)) return false;
+  for (const Box2& p : placed)
+    if (gap(box, p) < spacing) return false;
+  return true;
+}
+
+// Desks and cabinets against a room's walls, tables in its middle, 0.9 m or more apart.
+void furnishRoom(Building& b, const Rect& room, const std::vector<Box2>& keep_out, Draw& d) {
+  const Box2 face = metres(room).grown(-kHalfWall - 0.02);
+  const double area = (face.x1 - face.x0) * (face.y1 - face.y0);
+  const int wanted = std::clamp(static_cast<int>(area / 8.0), 1, 6);
+  std::vector<Box2> placed;
+  for (int attempt = 0, n = 0; attempt < 40 && n < wanted; ++attempt) {
+    const int kind = d.integer(0, 9);
+    Furniture f;
+    double length, deep;
+    if (kind < 5) {
+      length = d.uniform(1.2, 1.8), deep = d.uniform(0.6, 0.8), f.height = 0.75;
+      f.texture = "wood", f.label = "desk";
+    } else if (kind < 8) {
+      length = d.uniform(0.8, 1.2), deep = d.uniform(0.4, 0.6), f.height = d.uniform(1.6, 2.0);
+      f.texture = d.chance(0.5) ? "metal" : "poster", f.label = "cabinet";
+    } else {
+      length = d.uniform(1.2, 2.0), deep = d.uniform(0.8, 1.0), f.height = 0.75;
+      f.texture = "wood", f.label = "table";
+    }
+    const int side = d.integer(0, 3);  // wall: south, north, west, east; table: orientation
+    const bool along_x = side < 2;
+    const double sx = along_x ? length : deep, sy = along_x ? deep : length;
+    const double inset = f.label == "table" ? 1.0 : 0.0;
+    const double x_lo = face.x0 + inset, x_hi = face.x1 - inset - sx;
+    const double y_lo = face.y0 + inset, y_hi = face.y1 - inset - sy;
+    if (x_hi < x_lo || y_hi < y_lo) continue;
+    double x = d.uniform(x_lo, x_hi), y = d.uniform(y_lo, y_hi);
+    if (f.label != "table") {
+      if (side == 0) y = face.y0;
+      if (side == 1) y = face.y1 - sy;
+      if (side == 2) x = face.x0;
+      if (side == 3) x = face.x1 - sx;
+    }
+    f.footprint = {x, y, x + sx, y + sy};
+    if (!fits(f.footprint, keep_out, placed, 0.9)) continue;
+    placed.push_back(f.footprint);
+    b.furniture.push_back(f);
+    ++n;
+  }
+}
+
+// Furniture islands (desk blocks, cabinets) and free-standing partitions in the open plan,
+// 1.2 m or more from its walls, from each other and from the walking aisle.
+void furnishOpenPlan(Building& b, const std::vector<Box2>& keep_out, Draw& d) {
+  const Box2 open = metres(b.plan.corridors[0]).grown(-kHalfWall - 1.2);
+  std::vector<Box2> blocked = keep_out;
+  blocked.push_back(metres(b.plan.aisle).grown(0.6));
+  const double area = (open.x1 - open.x0) * (open.y1 - open.y0);
+  const int wanted = std::clamp(static_cast<int>(area / 12.0), 2, 14);
+  std::vector<Box2> placed;
+  for (int attempt = 0, n = 0; attempt < 120 && n < wanted; ++attempt) {
+    const int kind = d.integer(0, 9);
+    const bool along_x = d.chance(0.5);
+    double length, deep;
+    if (kind < 5)
+      length = d.uniform(2.4, 3.6), deep = d.uniform(1.4, 1.8);
+    else if (kind < 7)
+      length = d.uniform(1.2, 1.8), deep = 0.5;
+    else
+      length = d.uniform(1.5, 3.0), deep = 0.1;
+    const double sx = along_x ? length : deep, sy = along_x ? deep : length;
+    if (open.x1 - sx < open.x0 || open.y1 - sy < open.y0) continue;
+    const double x = d.uniform(open.x0, open.x1 - sx), y = d.uniform(open.y0, open.y1 - sy);
+    const Box2 footprint{x, y, x + sx, y + sy};
+    if (!fits(footprint, blocked, placed, 1.2)) continue;
+    placed.push_back(footprint);
+    ++n;
+    if (kind >= 7) {
+      WallSpec wall;
+      wall.thickness = 0.1;
+      wall.height = 1.6;
+      wall.texture = d.chance(0.5) ? "plaster" : "poster";
+      const double t = 0.5 * wall.thickness;  // wall solids reach past their ends by this
+      wall.from = along_x ? Eigen::Vector2d(x + t, y + t) : Eigen::Vector2d(x + t, y + t);
+      wall.to = along_x ? Eigen::Vector2d(x + sx - t, y + t) : Eigen::Vector2d(x + t, y + sy - t);
+      b.partitions.push_back({wall, "partition"});
+      continue;
+    }
+    Furniture f;
+    f.footprint = footprint;
+    f.height = kind < 5 ? 0.75 : 1.4;
+    f.texture = kind < 5 ? "wood" : "metal";
+    f.label = kind < 5 ? "desk island" : "cabinets";
+    b.furniture.push_back(f);
+  }
+}
+
+// People walk a corridor's length 0.45 m off its centre line (the loop: around it), back and
+// forth; slippery patches lie across corridors.
+void addPeopleAndPatches(Building& b, Draw& d) {
+  const Plan& p = b.plan;
+  std::vector<std::vector<Eigen::Vector2d>> walks;
+  const double offset = 0.45;
+  if (p.ring) {
+    int x0 = 1 << 30, y0 = 1 << 30, x1 = -(1 << 30), y1 = -(1 << 30);
+    for (const Rect& r : p.corridors)
+      x0 = std::min(x0, r.x0), y0 = std::min(y0, r.y0), x1 = std::max(x1, r.x1),
+      y1 = std::max(y1, r.y1);
+    const Rect& c = p.corridors[0];
+    const double half = 0.5 * std::min(c.x1 - c.x0, c.y1 - c.y0) * kDm;
+    for (double sign : {-1.0, 1.0}) {
+      const double in = half + sign * offset;
+      walks.push_back({{x0 * kDm + in, y0 * kDm + in},
+                       {x1 * kDm - in, y0 * kDm + in},
+                       {x1 * kDm - in, y1 * kDm - in},
+                       {x0 * kDm + in, y1 * kDm - in}});
+    }
+  } else {
+    for (const Rect& c : p.open_plan ? std::vector<Rect>{p.aisle} : p.corridors) {
+      const Box2 m = metres(c);
+      const bool along_x = m.x1 - m.x0 >= m.y1 - m.y0;
+      for (double sign : {-1.0, 1.0}) {
+        if (along_x) {
+          const double y = 0.5 * (m.y0 + m.y1) + sign * offset;
+          walks.push_back({{m.x0 + 0.8, y}, {m.x1 - 0.8, y}});
+        } else {
+          const double x = 0.5 * (m.x0 + m.x1) + sign * offset;
+          walks.push_back({{x, m.y0 + 0.8}, {x, m.y1 - 0.8}});
+        }
+      }
+    }
+  }
+  const int people = d.chance(0.5) ? 2 : 1;
+  const char* names[] = {"ana", "ben"};
+  int first_walk = -1;
+  for (int k = 0; k < people; ++k) {
+    int walk = d.integer(0, static_cast<int>(walks.size()) - 1);
+    if (walk == first_walk) walk = (walk + 1) % static_cast<int>(walks.size());
+    first_walk = walk;
+    PersonSpec person;
+    person.name = names[k];
+    person.radius = 0.22;
+    person.speed = std::round(d.uniform(0.7, 1.1) * 10.0) / 10.0;
+    person.start_time = 5.0 * d.integer(3, 8);
+    person.loop = true;
+    person.path = walks[static_cast<size_t>(walk)];
+    if (d.chance(0.5)) std::reverse(person.path.begin(), person.path.end());
+    b.people.push_back(person);
+  }
+
+  const int patches = d.chance(0.5) ? 2 : 1;
+  const std::vector<Rect>& lanes = p.open_plan ? std::vector<Rect>{p.aisle} : p.corridors;
+  const std::pair<const char*, double> kinds[] = {
+      {"polished_tiles", 0.05}, {"wet_floor", 0.15}, {"dust", 0.3}};
+  for (int k = 0; k < patches; ++k) {
+    const Box2 m =
+        metres(lanes[static_cast<size_t>(d.integer(0, static_cast<int>(lanes.size()) - 1))])
+            .grown(-kHalfWall);
+    const bool along_x = m.x1 - m.x0 >= m.y1 - m.y0;
+    const double length = d.uniform(1.5, 3.0);
+    const double span = (along_x ? m.x1 - m.x0 : m.y1 - m.y0) - length;
+    if (span <= 0.0) continue;
+    const double at = (along_x ? m.x0 : m.y0) + d.uniform(0.0, span);
+    const auto& [name, mu] = kinds[d.integer(0, 2)];
+    SurfaceSpec s;
+    s.name = std::string(name) + "_" + std::to_string(k + 1);
+    s.traction_mu = mu;
+    s.min = along_x ? Eigen::Vector2d(at, m.y0) : Eigen::Vector2d(m.x0, at);
+    s.max = along_x ? Eigen::Vector2d(at + length, m.y1) : Eigen::Vector2d(m.x1, at + length);
+    b.surfaces.push_back(s);
+  }
+}
+
+Building build(const std::string& family, double target, Draw& d) {
+  Building b;
+  b.plan = family == "corridor" ? corridorFamily(d, target)
+           : family == "lt"     ? ltFamily(d, target)
+           : family == "loop"   ? loopFamily(d, target)
+                                : openFamily(d, target);
+  b.floor_area = floorArea(planRects(b.plan));
+  transform(b.plan, d);
+  b.layout = realize(b.plan, d);
+  if (!placeStart(b, d)) return b;
+  const std::vector<Box2> keep_out = keepOuts(b);
+  for (size_t z = 1; z < b.layout.zones.size(); ++z)
+    furnishRoom(b, b.layout.zones[z].rects[0], keep_out, d);
+  if (b.plan.open_plan) furnishOpenPlan(b, keep_out, d);
+  b.walls = wallsOf(b.layout, std::round(d.uniform(2.4, 3.0) * 10.0) / 10.0, d);
+  // At least one long low-texture wall: the stereo's hardest case.
+  if (std::none_of(b.walls.begin(), b.walls.end(),
+                   [](const WallSpec& w) { return w.texture == "plaster"; })) {
+    auto longest =
+        std::max_element(b.walls.begin(), b.walls.end(), [](const auto& x, const auto& y) {
+          return (x.to - x.from).norm() < (y.to - y.from).norm();
+        });
+    longest->texture = "plaster";
+  }
+  addPeopleAndPatches(b, d);
+  return b;
+}
+
+// A number as the world files write it: at most 3 decimals, no trailing zeros.
+std::string num(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3f", v);
+  std::string s = buf;
+  while (s.back() == '0') s.pop_back();
+  if (s.back() == '.') s.pop_back();
+  return s == "-0" ? "0" : s;
+}
+std::string point(const Eigen::Vector2d& p) { return "[" + num(p.x()) + ", " + num(p.y()) + "]"; }
+double degrees(double rad) { return rad * 180.0 / M_PI; }
+
+std::string emit(const Building& b, const std::string& header, const std::string& family,
+                 uint64_t seed, const std::string& model) {
+  const Layout& l = b.layout;
+  int panels = 0;
+  for (const Doorway& dw : l.doors) panels += dw.panel;
+  std::ostringstream o;
+  o << header;
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "# An office building (family %s) of %.0f m^2: %s.\n",
+                family.c_str(), b.floor_area, b.plan.shape.c_str());
+  o << buf;
+  std::snprintf(buf, sizeof buf,
+                "# %d rooms, %d doorways (%d with an open door panel); jose and eric start in "
+                "a room\n",
+                l.rooms, static_cast<int>(l.doors.size()), panels);
+  o << buf;
+  o << "# before the home base. The robot model path is relative to this file's folder.\n"
+       "# Units: metres; angles in keys ending _deg.\n";
+  o << "name: generated_" << family << "_" << seed << "\n";
+  o << "seed: " << seed % (1u << 30) << "\n";
+  o << "mission: explore\n\n";
+  o << "simulation:\n  map_resolution: 0.05\n  physics_rate: 200\n  control_rate: 20\n\n";
+  o << "textures:\n"
+       "  carpet:  {type: noise,   tile: 2.0, feature: 0.03, mean: 105, contrast: 30}\n"
+       "  brick:   {type: bricks,  tile: 2.0, feature: 0.02, mean: 120, contrast: 55}\n"
+       "  poster:  {type: posters, tile: 2.5, feature: 0.04, mean: 128, contrast: 70}\n"
+       "  plaster: {type: uniform, tile: 2.0, feature: 0.10, mean: 190, contrast: 4}   # low "
+       "texture\n"
+       "  wood:    {type: noise,   tile: 1.0, feature: 0.02, mean: 140, contrast: 55}\n"
+       "  metal:   {type: noise,   tile: 1.0, feature: 0.04, mean: 100, contrast: 45}\n"
+       "  landmark: {type: posters, tile: 1.0, feature: 0.02, mean: 128, contrast: 80}\n\n";
+
+  o << "# The floor: each room and corridor to the outer faces of its walls.\n";
+  o << "floor:\n  texture: carpet\n  areas:\n";
+  int room_number = 0;
+  for (size_t z = 0; z < l.zones.size(); ++z) {
+    const Zone& zone = l.zones[z];
+    std::string what = zone.kind == ZoneKind::kOpen       ? "open plan"
+                       : zone.kind == ZoneKind::kCorridor ? "corridor"
+                                                          : "room " + std::to_string(++room_number);
+    if (static_cast<int>(z) == l.start_room) what += " (start room)";
+    for (const Rect& r : zone.rects) {
+      const Box2 m = metres(r).grown(kHalfWall);
+      o << "    - {min: " << point({m.x0, m.y0}) << ", max: " << point({m.x1, m.y1}) << "}   # "
+        << what << "\n";
+    }
+  }
+
+  o << "\nwalls:\n";
+  for (const WallSpec& w : b.walls)
+    o << "  - {from: " << point(w.from) << ", to: " << point(w.to)
+      << ", thickness: " << num(w.thickness) << ", height: " << num(w.height)
+      << ", texture: " << w.texture << "}\n";
+  for (const auto& [w, label] : b.partitions)
+    o << "  - {from: " << point(w.from) << ", to: " << point(w.to)
+      << ", thickness: " << num(w.thickness) << ", height: " << num(w.height)
+      << ", texture: " << w.texture << "}   # " << label << "\n";
+
+  if (panels > 0) {
+    o << "\n# Doorways with a door panel, standing open (the others are plain openings).\n";
+    o << "doors:\n";
+    for (const Doorway& dw : l.doors)
+      if (dw.panel)
+        o << "  - {center: " << point(dw.centre()) << ", width: " << num(dw.width())
+          << ", yaw_deg: " << (dw.vertical ? 90 : 0) << ", open: true}\n";
+  }
+
+  if (!b.furniture.empty()) {
+    o << "\nboxes:\n";
+    for (const Furniture& f : b.furniture) {
+      const Box2& m = f.footprint;
+      o << "  - {center: " << point({0.5 * (m.x0 + m.x1), 0.5 * (m.y0 + m.y1)}) << ", size: ["
+        << num(m.x1 - m.x0) << ", " << num(m.y1 - m.y0) << ", " << num(f.height)
+        << "], texture: " << f.texture << "}   # " << f.label << "\n";
+    }
+  }
+
+  o << "\n# Slippery floor: patches with less wheel friction than the robot's own.\n";
+  o << "surfaces:\n";
+  for (const SurfaceSpec& s : b.surfaces)
+    o << "  - {name: " << s.name << ", min: " << point(s.min) << ", max: " << point(s.max)
+      << ", traction_mu: " << num(s.traction_mu) << "}\n";
+
+  o << "\n# People walking the corridors, to and fro (they wait for a robot ahead of them).\n";
+  o << "people:\n";
+  for (const PersonSpec& p : b.people) {
+    o << "  - {name: " << p.name << ", radius: " << num(p.radius) << ", speed: " << num(p.speed)
+      << ", start_time: " << num(p.start_time) << ", loop: true, path: [";
+    for (size_t k = 0; k < p.path.size(); ++k) o << (k ? ", " : "") << point(p.path[k]);
+    o << "]}\n";
+  }
+
+  o << "\n# The standard home base: two L corners 1.4 m apart opening towards the robots.\n";
+  o << "home_base:\n  corners:\n";
+  for (const auto& c : b.home_base.corners)
+    o << "    - {position: " << point(c.position) << ", heading_deg: " << num(degrees(c.heading))
+      << "}\n";
+  o << "  arm_length: " << num(b.home_base.arm_length)
+    << "\n  thickness: " << num(b.home_base.thickness) << "\n  height: " << num(b.home_base.height)
+    << "\n  texture: landmark\n";
+
+  o << "\nrobots:\n";
+  for (const auto& [name, start] : b.robots)
+    o << "  - name: " << name << "\n    model: " << model
+      << "\n    start: {position: " << point(start.translation())
+      << ", heading_deg: " << num(degrees(start.theta)) << "}\n";
+  return o.str();
+}
+
+}  // namespace
+
+const std::vector<std::string>& worldFamilies() {
+  static const std::vector<std::string> families = {"corridor", "lt", "loop", "open"};
+  return families;
+}
+
+void WorldGeneratorOptions::validate() const {
+  const auto& families = worldFamilies();
+  if (!family.empty() && std::find(families.begin(), families.end(), family) == families.end()) {
+    std::string known;
+    for (const std::string& f : families) known += (known.empty() ? "" : ", ") + f;
+    throw ConfigError("--family: expected one of " + known + ", got '" + family + "'");
+  }
+  if (area && !(*area >= kMinArea && *area <= kMaxArea))
+    throw ConfigError("--area: expected a floor area in [" + num(kMinArea) + ", " + num(kMaxArea) +
+                      "] m^2, got " + num(*area));
+  if (out_file.empty()) throw ConfigError("--out: expected the path of the world file to write");
+}
+
+GeneratedWorld generateWorld(const WorldGeneratorOptions& options) {
+  options.validate();
+  namespace fs = std::filesystem;
+  // Family and area are always drawn, so that giving the drawn ones changes nothing else.
+  Draw first(splitmix(options.seed));
+  const auto& families = worldFamilies();
+  const std::string drawn_family =
+      families[static_cast<size_t>(first.integer(0, static_cast<int>(families.size()) - 1))];
+  const double drawn_area = 10.0 * first.integer(10, 60);
+  GeneratedWorld out;
+  out.family = options.family.empty() ? drawn_family : options.family;
+  out.area = options.area ? *options.area : drawn_area;
+
+  const fs::path model = fs::absolute(options.robot_model.empty()
+                                          ? fs::path(COOPMAP_SOURCE_DIR) / "robots/b14/b14.yaml"
+                                          : fs::path(options.robot_model))
+                             .lexically_normal();
+  const fs::path folder = fs::absolute(options.out_file).lexically_normal().parent_path();
+  const fs::path relative = model.lexically_relative(folder);
+  const std::string model_text = relative.empty() ? model.string() : relative.string();
+
+  std::string command = "coopmap world generate --seed " + std::to_string(options.seed);
+  if (!options.family.empty()) command += " --family " + options.family;
+  if (options.area) command += " --area " + num(*options.area);
+  std::string header = "# Generated by `" + command + "`\n#";
+  std::string drawn;
+  if (options.family.empty()) drawn = "family " + out.family;
+  if (!options.area) drawn += (drawn.empty() ? "area " : " and area ") + num(out.area) + " m^2";
+  if (!drawn.empty()) header += " (" + drawn + " drawn from the seed)";
+  header +=
+      (drawn.empty() ? " The" : "; the") + std::string(" same command writes the same bytes.\n");
+
+  // Keep the floor inside the allowed range when aiming at its ends.
+  const double target = std::clamp(out.area, 103.0, 597.0);
+  std::string last_failure;
+  for (int attempt = 0; attempt < kAttempts; ++attempt) {
+    Draw d(splitmix(options.seed ^ splitmix(static_cast<uint64_t>(attempt) + 1)));
+    const Building b = build(out.family, target, d);
+    if (b.robots.empty()) {
+      last_failure = "no room for the home base";
+      continue;
+    }
+    if (b.floor_area < WorldGeneratorOptions::kMinArea ||
+        b.floor_area > WorldGeneratorOptions::kMaxArea ||
+        std::abs(b.floor_area - out.area) > 0.1 * out.area) {
+      last_failure = "floor area " + num(b.floor_area) + " m^2";
+      continue;
+    }
+    const std::string yaml = emit(b, header, out.family, options.seed, model_text);
+    try {
+      const World world = parseWorld(yaml, options.out_file);
+      const WorldCheckResult check = checkWorldExplorable(world);
+      if (!check.ok()) {
+        last_failure = check.detail;
+        continue;
+      }
+    } catch (const ConfigError& e) {
+      last_failure = e.what();
+      continue;
+    }
+    out.yaml = yaml;
+    out.floor_area = b.floor_area;
+    out.rooms = b.layout.rooms;
+    out.doors = static_cast<int>(b.layout.doors.size());
+    out.attempt = attempt;
+    return out;
+  }
+  throw std::runtime_error("world generator: no world of seed " + std::to_string(options.seed) +
+                           " passed its checks in " + std::to_string(kAttempts) +
+                           " attempts (last: " + last_failure + ")");
+}
+
+}  // namespace coopmap::sim
