@@ -169,11 +169,14 @@ void MissionAgent::chooseGoal(double now, const Pose2& odometry, const Occupancy
     goHome(now, odometry, map);
     return;
   }
+  const bool idle = travelled_ < config_.min_sortie_m;
+  if (!idle) idle_sorties_ = 0;  // this sortie got somewhere: the row of idle ones is broken
   if (config_.retry_frontiers && step.status == ExploreStatus::kDone && step.failed_left > 0 &&
-      config_.max_sorties > 1 && travelled_ >= config_.min_sortie_m) {
+      config_.max_sorties > 1 && (!idle || idle_sorties_ + 1 < MissionConfig::kMaxIdleSorties)) {
     // Frontiers are left that this sortie could not reach (their goals failed, or have no
     // way to them in this map). After an import the map is another: home to share, and try
-    // them again from there; a sortie that finds none from (near) its start is done.
+    // them again from there, unless sorties from the start keep finding none within reach.
+    if (idle) ++idle_sorties_;
     last_event_ = "no reachable frontier for now: " + step.reason;
     goHome(now, odometry, map);
     return;

@@ -53,12 +53,16 @@ struct MissionConfig {
   // docs/experiments/2026-12-building-sessions-25-34.md). The safety stop, on the latest
   // radial map, still stops it short of whatever stands on the trail.
   int trail_after_waits = 5;
-  // When no frontier goal is left and some failed this sortie (or had no way to them), after
-  // at least min_sortie_m: home to share and try them again next sortie (the imported map is
-  // another), rather than end exploration. Goals reached are then remembered for good: what
-  // the robot did not see from there it will not. Off: exploration ends there (the paper's
-  // rooms; a building whose corridors a sortie cannot reach in one go wants it on).
+  // When no frontier goal is left and some failed this sortie (or had no way to them): home to
+  // share and try them again next sortie (the imported map is another, a teammate in the way
+  // has moved on), rather than end exploration. A sortie that gets no farther than
+  // min_sortie_m before that happens is idle; after kMaxIdleSorties idle sorties in a row
+  // the frontiers are out of reach and exploration ends. Goals reached are remembered for
+  // good: what the robot did not see from there it will not. Off: exploration ends there
+  // (the paper's rooms; a building whose corridors a sortie cannot reach in one go wants it
+  // on).
   bool retry_frontiers = false;
+  static constexpr int kMaxIdleSorties = 2;
   double replan_period_s = 4.0;  // s between checks of the path against the growing map
   // m/s^2: the mission speeds up no faster than this (limitSpeedUp); slowing down and
   // stopping are left to the base's own limit. 0: as fast as the base does. Where the floor
@@ -311,6 +315,7 @@ class MissionAgent {
   bool plan_home_at_end_ = false;  // the route ends short of home: plan again there
   std::string complete_reason_;    // why exploration was found complete
   int sortie_goals_ = 0;           // goals reached this sortie
+  int idle_sorties_ = 0;  // sorties in a row ended for unreachable frontiers, short of min_sortie_m
   int return_bumps_ = 0;
   int sortie_bumps_ = 0;
   std::optional<Waypoint> approach_look_;  // the look driven nearer to take (lookFrom)

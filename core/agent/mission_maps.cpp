@@ -89,13 +89,23 @@ PlanningMap MissionAgent::planningMap(const OccupancyGrid& map, bool allow_unkno
   c.allow_unknown = allow_unknown;
   if (margin >= 0.0) c.margin = margin;
   // A teammate standing nearer than its disc and this robot's clearance (two robots placed
-  // side by side, one coming back to the home base beside the other) blocks the disc's
-  // outer margin only so far as the robot can still plan from where it stands: else both
-  // stand on blocked cells, neither can plan a step away, and neither explores.
+  // side by side, one coming back to the home base beside the other) leaves free the cells
+  // the robot's own clearance needs where it stands: else both stand on blocked cells and
+  // neither can plan a step away. The rest of the disc stands, so the only ways out lead
+  // away from the teammate.
+  const double own_clearance = c.robot_radius + c.margin + lim.resolution;
   for (const Eigen::Vector2d& p : teammates_) {
-    const double apart = (p - last_pose_.translation()).norm();
-    const double leaves_me_free = apart - c.robot_radius - c.margin - lim.resolution;
-    fillDisc(states, p, std::clamp(leaves_me_free, 0.0, config_.team_radius), CellState::kOccupied);
+    const MapLimits& l = states.limits;
+    const int n = static_cast<int>(std::ceil(config_.team_radius / l.resolution));
+    const int cx = l.cellX(p.x()), cy = l.cellY(p.y());
+    for (int iy = cy - n; iy <= cy + n; ++iy)
+      for (int ix = cx - n; ix <= cx + n; ++ix) {
+        if (!l.contains(ix, iy)) continue;
+        const Eigen::Vector2d cell = l.cellCenter(ix, iy);
+        if ((cell - p).norm() <= config_.team_radius &&
+            (cell - last_pose_.translation()).norm() > own_clearance)
+          states.at(ix, iy) = CellState::kOccupied;
+      }
   }
   return PlanningMap(states, c);
 }
