@@ -1,4 +1,5 @@
 // coopmap: the command-line program.
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <exception>
@@ -34,6 +35,23 @@
 #include "sim/world/world.h"
 #include "sim/world/world_generator.h"
 
+namespace {
+
+// A seed as typed: a decimal integer that fits 64 unsigned bits. (CLI11 alone would take
+// "-1" and wrap it, or cap a longer number, and two different seeds would give one run.)
+const CLI::Validator kSeed(
+    [](std::string& text) -> std::string {
+      uint64_t value = 0;
+      const char* end = text.data() + text.size();
+      const auto [at, error] = std::from_chars(text.data(), end, value);
+      if (text.empty() || error != std::errc() || at != end)
+        return "expected an integer from 0 to 18446744073709551615, got '" + text + "'";
+      return "";
+    },
+    "SEED");
+
+}  // namespace
+
 int main(int argc, char** argv) {
   CLI::App app{
       "coopmap: a simulation-first testbed for cooperative stereo-vision mapping with B-14 "
@@ -55,6 +73,7 @@ int main(int argc, char** argv) {
       ->check(CLI::ExistingFile);
   cmd_run->add_option("--out", run_out, "Output folder (created if missing)")->required();
   cmd_run->add_option("--seed", run.seed, "Seed for every random choice of the run")
+      ->check(kSeed)
       ->capture_default_str();
   cmd_run->add_option("--duration", run.duration, "Simulated seconds at most")
       ->capture_default_str()
@@ -183,7 +202,9 @@ int main(int argc, char** argv) {
   cmd_eval->add_option("--frames", eval.frames, "Frames to evaluate from the world run")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
-  cmd_eval->add_option("--seed", eval.seed, "Seed of the world run")->capture_default_str();
+  cmd_eval->add_option("--seed", eval.seed, "Seed of the world run")
+      ->check(kSeed)
+      ->capture_default_str();
   cmd_eval->add_option("--disparities", eval.stereo.num_disparities, "Disparities searched")
       ->capture_default_str();
   cmd_eval->add_option("--window", eval.stereo.window, "SAD window side (odd, 3..11)")
@@ -285,7 +306,9 @@ int main(int argc, char** argv) {
   cmd_fit->add_option("--robot", fit.robot_model, "Robot model file for --simulate")
       ->capture_default_str()
       ->check(CLI::ExistingFile);
-  cmd_fit->add_option("--seed", fit.seed, "Seed of the simulated odometry")->capture_default_str();
+  cmd_fit->add_option("--seed", fit.seed, "Seed of the simulated odometry")
+      ->check(kSeed)
+      ->capture_default_str();
 
   coopmap::DriftBenchOptions drift;
   std::vector<std::string> drift_models;
@@ -306,7 +329,9 @@ int main(int argc, char** argv) {
   cmd_drift->add_option("--seeds", drift.seeds, "Number of seeds")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
-  cmd_drift->add_option("--first-seed", drift.first_seed, "First seed")->capture_default_str();
+  cmd_drift->add_option("--first-seed", drift.first_seed, "First seed")
+      ->check(kSeed)
+      ->capture_default_str();
   cmd_drift
       ->add_option("--odometry", drift.odometry,
                    "Odometry preset of the robot file ('drifting' is its default preset)")
@@ -469,7 +494,12 @@ int main(int argc, char** argv) {
   cmd_generate->add_option("--area", gen_area,
                            "Floor area in m^2, 100-600 (default: drawn from the seed)");
 
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // Help and version exit 0; every bad option or value exits 2, as all bad input does.
+    return app.exit(e) == 0 ? 0 : 2;
+  }
 
   try {
     if (cmd_robot->parsed()) {

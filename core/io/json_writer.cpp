@@ -101,6 +101,12 @@ JsonWriter& JsonWriter::value(std::string_view key, long long v) {
   return *this;
 }
 
+JsonWriter& JsonWriter::value(std::string_view key, unsigned long long v) {
+  prefix(key);
+  out_ += std::to_string(v);
+  return *this;
+}
+
 JsonWriter& JsonWriter::value(std::string_view key, bool v) {
   prefix(key);
   out_ += v ? "true" : "false";

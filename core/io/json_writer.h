@@ -15,6 +15,7 @@ class JsonWriter {
   JsonWriter& endArray();
   JsonWriter& value(std::string_view key, double v);
   JsonWriter& value(std::string_view key, long long v);
+  JsonWriter& value(std::string_view key, unsigned long long v);
   JsonWriter& value(std::string_view key, int v) { return value(key, static_cast<long long>(v)); }
   JsonWriter& value(std::string_view key, bool v);
   JsonWriter& value(std::string_view key, std::string_view v);

@@ -31,7 +31,7 @@ void writeMetrics(const ReplayOptions& o, const ReplayResult& result) {
   j.value("recording", o.recording).value("format_version", result.info.version);
   j.value("source", result.info.source);
   j.value("world", result.info.world).value("world_file", result.info.world_file);
-  j.value("seed", static_cast<long long>(result.info.seed));
+  j.value("seed", static_cast<unsigned long long>(result.info.seed));
   j.value("wall_time_s", result.wall_time_s);
   j.beginObject("robots");
   for (const ReplayRobotResult& r : result.robots) {

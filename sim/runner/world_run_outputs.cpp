@@ -72,7 +72,7 @@ void writeRunOutputs(const std::string& dir, const RunResult& result) {
     metrics("shared_map", shared.protocol);
     metrics("shared_map_naive", shared.naive);
   }
-  j.value("seed", static_cast<long long>(result.seed));
+  j.value("seed", static_cast<unsigned long long>(result.seed));
   {
     int collisions = 0;
     bool complete = !result.robots.empty();

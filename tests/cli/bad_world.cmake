@@ -36,3 +36,30 @@ if(NOT rc EQUAL 0 OR NOT out MATCHES "--seed" OR NOT out MATCHES "metrics.json")
   message(FATAL_ERROR "coopmap run --help does not explain the options:\n${out}")
 endif()
 message(STATUS "bad input is reported clearly")
+
+# Seeds are unsigned 64-bit numbers as typed: no wrapping, no capping; a bad option exits 2
+# as every other bad input does.
+foreach(seed "-1" "99999999999999999999999" "18446744073709551616" "1.5" "")
+  execute_process(COMMAND "${COOPMAP}" run "${SOURCE_DIR}/worlds/lab.yaml" --out "${WORK_DIR}/seed"
+                          --seed "${seed}" --duration 0.5 --quiet
+                  RESULT_VARIABLE rc ERROR_VARIABLE err)
+  if(NOT rc EQUAL 2 OR NOT err MATCHES "--seed: expected an integer from 0 to 18446744073709551615")
+    message(FATAL_ERROR "--seed '${seed}' was not refused clearly (rc ${rc}):\n${err}")
+  endif()
+  if(EXISTS "${WORK_DIR}/seed")
+    message(FATAL_ERROR "coopmap wrote outputs for --seed '${seed}'")
+  endif()
+endforeach()
+execute_process(COMMAND "${COOPMAP}" run "${SOURCE_DIR}/worlds/lab.yaml" --out "${WORK_DIR}/seed"
+                        --seed 18446744073709551615 --duration 0.5 --quiet
+                RESULT_VARIABLE rc ERROR_VARIABLE err)
+file(READ "${WORK_DIR}/seed/metrics.json" metrics)
+if(NOT rc EQUAL 0 OR NOT metrics MATCHES "\"seed\": 18446744073709551615")
+  message(FATAL_ERROR "the largest seed did not run as itself (rc ${rc}):\n${err}")
+endif()
+execute_process(COMMAND "${COOPMAP}" run "${SOURCE_DIR}/worlds/lab.yaml" --out "${WORK_DIR}/x"
+                        --no-such-option
+                RESULT_VARIABLE rc ERROR_VARIABLE err)
+if(NOT rc EQUAL 2)
+  message(FATAL_ERROR "an unknown option exited ${rc}, expected 2:\n${err}")
+endif()
