@@ -14,6 +14,28 @@ std::string join(const std::vector<std::string>& v) {
   return s;
 }
 
+// A mapping that names a key twice: yaml-cpp keeps one of the two silently, and a setting
+// written twice would be read as whichever it kept. Refused, naming the second.
+void refuseDuplicateKeys(const YAML::Node& node, const std::string& file) {
+  if (node.IsSequence()) {
+    for (const YAML::Node& child : node) refuseDuplicateKeys(child, file);
+    return;
+  }
+  if (!node.IsMap()) return;
+  std::vector<std::string> seen;
+  for (const auto& item : node) {
+    const YAML::Node& key = item.first;
+    if (key.IsScalar()) {
+      if (std::find(seen.begin(), seen.end(), key.Scalar()) != seen.end())
+        throw ConfigError(file + ":" + std::to_string(key.Mark().line + 1) + ":" +
+                          std::to_string(key.Mark().column + 1) + ": key '" + key.Scalar() +
+                          "' given twice in one mapping");
+      seen.push_back(key.Scalar());
+    }
+    refuseDuplicateKeys(item.second, file);
+  }
+}
+
 YamlField parse(const std::string& text, const std::string& file) {
   YAML::Node root;
   try {
@@ -23,6 +45,7 @@ YamlField parse(const std::string& text, const std::string& file) {
                       std::to_string(e.mark.column + 1) + ": YAML syntax error: " + e.msg);
   }
   if (!root.IsMap()) throw ConfigError(file + ":1:1: expected a YAML mapping at the top level");
+  refuseDuplicateKeys(root, file);
   return YamlField(root, file, "", 1, 1);
 }
 }  // namespace

@@ -1,4 +1,5 @@
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -7,11 +8,30 @@
 #include "core/agent/cooperation.h"
 #include "core/agent/route_follower.h"
 #include "core/io/yaml_reader.h"
+#include "core/robot/robot_interface.h"
 #include "sim/world/world.h"
+#include "sim/world/world_checks.h"
 
 namespace coopmap::sim {
 
 namespace {
+
+// m, as messages write it.
+std::string formatMetres(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.2f m", v);
+  return b;
+}
+
+// The body radius a robot model file gives (body.radius); the description's default where
+// the file has none (the model's own loader checks the file in full).
+double bodyRadiusOf(const std::string& model_file) {
+  const YamlField model = YamlField::loadFile(model_file);
+  if (const auto body = model.get("body"))
+    if (const auto radius = body->get("radius"))
+      return radius->asDouble(0.05, 2.0, "a radius in [0.05, 2] m");
+  return RobotDescription{}.body_radius;
+}
 constexpr double kDeg = M_PI / 180.0;
 
 uint64_t fnv1a(const std::string& s) {
@@ -395,6 +415,7 @@ World parseWorld(const std::string& text, const std::string& file) {
 
   const std::filesystem::path base = std::filesystem::path(file).parent_path();
   std::set<std::string> names;
+  std::vector<double> radii;  // of the robots loaded so far
   const auto robots = root["robots"].elements();
   if (robots.empty()) root["robots"].fail("at least one robot");
   for (const YamlField& f : robots) {
@@ -412,6 +433,21 @@ World parseWorld(const std::string& text, const std::string& file) {
                       " does not exist)");
     r.start = parseStart(f["start"]);
     if (!inside(w, r.start.translation())) f["start"].fail("a start position on the floor");
+    // Where the robot's body stands, nothing else may: no solid, no other robot.
+    const double radius = bodyRadiusOf(r.model_file);
+    const Eigen::Vector2d at = r.start.translation();
+    for (const SolidBox& solid : w.solids())
+      if (solid.kind != "door" && distanceToFootprint(solid, at) < radius)
+        f["start"].failMessage("the robot's body (radius " + formatMetres(radius) + ") at (" +
+                               formatMetres(at.x()) + ", " + formatMetres(at.y()) +
+                               ") overlaps a " + solid.kind + " of the world");
+    for (size_t k = 0; k < w.robots.size(); ++k)
+      if ((w.robots[k].start.translation() - at).norm() < radius + radii[k])
+        f["start"].failMessage(
+            "the robot's body overlaps " + w.robots[k].name + "'s at its start (" +
+            formatMetres((w.robots[k].start.translation() - at).norm()) +
+            " apart, their radii add up to " + formatMetres(radius + radii[k]) + ")");
+    radii.push_back(radius);
     if (const auto route = f.get("route"))
       for (const YamlField& wp : route->elements()) {
         r.route.push_back(parseWaypoint(wp));

@@ -54,6 +54,16 @@ TEST(YamlReaderTest, SyntaxErrorNamesLine) {
   EXPECT_NE(m.find("YAML syntax error"), std::string::npos) << m;
 }
 
+// A key given twice would be read as whichever yaml-cpp kept: refused, at any depth.
+TEST(YamlReaderTest, AKeyGivenTwiceIsRefused) {
+  EXPECT_EQ(messageOf([] { YamlField::loadString("a: 1\nb: 2\na: 3\n", "cfg.yaml"); }),
+            "cfg.yaml:3:1: key 'a' given twice in one mapping");
+  EXPECT_EQ(messageOf([] { YamlField::loadString("xs:\n  - {x: 1, y: 2, x: 3}\n", "cfg.yaml"); }),
+            "cfg.yaml:2:18: key 'x' given twice in one mapping");
+  EXPECT_EQ(messageOf([] { YamlField::loadString("a: {x: 1}\nb: {x: 1}\n", "cfg.yaml"); }),
+            "(no error)");
+}
+
 TEST(YamlReaderTest, MissingFileIsReported) {
   EXPECT_EQ(messageOf([] { YamlField::loadFile("/nonexistent/w.yaml"); }),
             "/nonexistent/w.yaml: cannot open file");

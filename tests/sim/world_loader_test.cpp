@@ -107,7 +107,7 @@ TEST(WorldLoaderTest, UnknownTextureListsTheDeclaredOnes) {
 }
 
 TEST(WorldLoaderTest, MissingFieldIsNamed) {
-  const std::string e = errorOf(replaceLine(minimal(), 15, "    route: []"));
+  const std::string e = errorOf(replaceLine(minimal(), 15, ""));
   EXPECT_EQ(e, "w.yaml:13:5: robots[0]: missing required field 'robots[0].start'");
 }
 
@@ -119,6 +119,25 @@ TEST(WorldLoaderTest, TypoInKeyIsCaught) {
 TEST(WorldLoaderTest, WrongCornerCount) {
   const std::string e = errorOf(replaceLine(minimal(), 10, ""));
   EXPECT_EQ(e, "w.yaml:9:5: home_base.corners: expected exactly 2 corners, got a list");
+}
+
+// Where a robot's body stands at the start nothing else may: a wall, a box, another robot.
+TEST(WorldLoaderTest, StartsThatOverlapAreRefused) {
+  const std::string in_wall =
+      errorOf(replaceLine(minimal(), 15, "    start: {position: [2, 0.2], heading_deg: 90}"));
+  EXPECT_EQ(in_wall,
+            "w.yaml:15:12: robots[0].start: the robot's body (radius 0.18 m) at (2.00 m, 0.20 m) "
+            "overlaps a wall of the world");
+  const std::string two = minimal() + "  - name: r2\n    model: " + kSrc +
+                          "/robots/b14/b14.yaml\n"
+                          "    start: {position: [2.2, 2], heading_deg: 90}\n";
+  EXPECT_EQ(errorOf(two),
+            "w.yaml:19:12: robots[1].start: the robot's body overlaps r1's at its start (0.20 m "
+            "apart, their radii add up to 0.36 m)");
+  const std::string apart = minimal() + "  - name: r2\n    model: " + kSrc +
+                            "/robots/b14/b14.yaml\n"
+                            "    start: {position: [3, 2], heading_deg: 90}\n";
+  EXPECT_EQ(errorOf(apart), "(no error)");
 }
 
 TEST(WorldLoaderTest, WaypointOffTheFloor) {
