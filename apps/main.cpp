@@ -24,6 +24,7 @@
 #include "robots/camera/calibrate_rig.h"
 #include "robots/carmen/carmen_mapping.h"
 #include "sim/runner/drift_bench.h"
+#include "sim/runner/explore_bench.h"
 #include "sim/runner/odometry_fit.h"
 #include "sim/runner/remap.h"
 #include "sim/runner/replay_run.h"
@@ -344,6 +345,32 @@ int main(int argc, char** argv) {
   bool drift_quiet = false;
   cmd_drift->add_flag("--quiet", drift_quiet, "No line per seed on stderr");
 
+  coopmap::ExploreBenchOptions explore_bench;
+  auto* cmd_explore_bench = cmd_bench->add_subcommand(
+      "explore",
+      "The exploration benchmark: for each seed, generates a world (`world generate`, family "
+      "and area drawn from the seed) and runs the robots exploring it on their default "
+      "settings, each world in its own process. Writes explore.csv (a row per world), "
+      "explore.md (the distribution, the targets met, the worst worlds), worlds/ and runs/ "
+      "to --out.");
+  cmd_explore_bench->add_option("--first-seed", explore_bench.first_seed, "First seed")
+      ->check(kSeed)
+      ->capture_default_str();
+  cmd_explore_bench->add_option("--count", explore_bench.count, "Number of worlds")
+      ->capture_default_str();
+  cmd_explore_bench->add_option("--robots", explore_bench.robots, "Robots exploring: 1 or 2")
+      ->capture_default_str();
+  cmd_explore_bench
+      ->add_option("--duration", explore_bench.duration, "Simulated seconds per world at most")
+      ->capture_default_str();
+  cmd_explore_bench
+      ->add_option("--jobs", explore_bench.jobs,
+                   "Worlds run at once (default: the number of processors)")
+      ->capture_default_str();
+  cmd_explore_bench->add_option("--out", explore_bench.out_dir, "Output folder")->required();
+  bool explore_bench_quiet = false;
+  cmd_explore_bench->add_flag("--quiet", explore_bench_quiet, "No line per world on stderr");
+
   coopmap::TraverseOptions trav;
   auto* cmd_traverse = app.add_subcommand(
       "traverse",
@@ -573,6 +600,12 @@ int main(int argc, char** argv) {
       const coopmap::DriftBenchResult r = coopmap::runDriftBench(drift);
       std::printf("%s\n%s/drift.csv, drift.md and seeds/ written\n", r.markdown.c_str(),
                   drift.out_dir.c_str());
+    }
+    if (cmd_explore_bench->parsed()) {
+      explore_bench.progress = !explore_bench_quiet;
+      coopmap::runExploreBench(explore_bench);
+      std::printf("%s/explore.csv, explore.md, worlds/ and runs/ written\n",
+                  explore_bench.out_dir.c_str());
     }
     if (cmd_fit->parsed()) {
       const coopmap::OdometryFitResult r = coopmap::runOdometryFit(fit);

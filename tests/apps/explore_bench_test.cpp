@@ -1,0 +1,199 @@
+// The exploration benchmark's own code that runs no world: its options, reading a run's
+// metrics.json, the CSV and the summary's statistics.
+#include "sim/runner/explore_bench.h"
+
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "core/io/yaml_reader.h"
+
+namespace coopmap {
+namespace {
+
+// A metrics.json as `coopmap run` writes it, cut to the keys the benchmark reads and a few
+// it does not.
+const char* kCooperativeMetrics = R"({
+  "world": "office",
+  "shared_map": {
+    "wall_recall": 0.962,
+    "false_occupied_rate": 0.0041,
+    "coverage": 0.931,
+    "false_occupied_by_distance": {"2": 0.003, "3": 0.001}
+  },
+  "seed": 3,
+  "collisions": 2,
+  "exploration_complete": true,
+  "cooperative": true,
+  "time_to_50_percent_coverage_s": 410,
+  "time_to_75_percent_coverage_s": 800,
+  "time_to_90_percent_coverage_s": -1,
+  "robots": {
+    "jose": {
+      "phase": "done",
+      "mission": {"last_event": "home: \"nothing left\", done"},
+      "contacts": [{"t": 12.5, "with": "person"}],
+      "map": {"wall_recall": 0.5, "false_occupied_rate": 0.2, "coverage": 0.4}
+    },
+    "eric": {
+      "phase": "returning",
+      "mission": {"last_event": "budget spent"},
+      "contacts": [],
+      "map": {"wall_recall": 0.6, "false_occupied_rate": 0.1, "coverage": 0.3}
+    }
+  }
+}
+)";
+
+TEST(ExploreBenchTest, ReadsTheSharedMapOfACooperativeRun) {
+  ExploreRow row;
+  readExploreMetrics(kCooperativeMetrics, "runs/3/metrics.json", row);
+  EXPECT_DOUBLE_EQ(row.coverage, 0.931);
+  EXPECT_DOUBLE_EQ(row.wall_recall, 0.962);
+  EXPECT_DOUBLE_EQ(row.false_occupied_rate, 0.0041);
+  EXPECT_DOUBLE_EQ(row.time_to_50_s, 410.0);
+  EXPECT_DOUBLE_EQ(row.time_to_90_s, -1.0);
+  EXPECT_EQ(row.contacts, 2);
+  EXPECT_TRUE(row.exploration_complete);
+  EXPECT_EQ(row.map_picture, "shared_map_evaluation.png");
+  ASSERT_EQ(row.endings.size(), 2u);
+  EXPECT_EQ(row.endings[0].robot, "jose");
+  EXPECT_EQ(row.endings[0].phase, "done");
+  EXPECT_EQ(row.endings[0].reason, "home: \"nothing left\", done");
+  EXPECT_EQ(row.endings[1].robot, "eric");
+  EXPECT_EQ(row.endings[1].phase, "returning");
+}
+
+TEST(ExploreBenchTest, ReadsTheRobotsOwnMapWithoutASharedOne) {
+  std::string text = kCooperativeMetrics;
+  text.replace(text.find("\"cooperative\": true"), 19, "\"cooperative\": false");
+  ExploreRow row;
+  readExploreMetrics(text, "m.json", row);
+  EXPECT_DOUBLE_EQ(row.coverage, 0.4);
+  EXPECT_DOUBLE_EQ(row.wall_recall, 0.5);
+  EXPECT_EQ(row.map_picture, "map_jose_evaluation.png");
+}
+
+TEST(ExploreBenchTest, NamesAMissingKey) {
+  std::string text = kCooperativeMetrics;
+  text.replace(text.find("\"collisions\""), 12, "\"bumps\"");
+  ExploreRow row;
+  try {
+    readExploreMetrics(text, "runs/3/metrics.json", row);
+    FAIL() << "a metrics.json without collisions was read";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("runs/3/metrics.json"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("'collisions'"), std::string::npos) << e.what();
+  }
+}
+
+TEST(ExploreBenchTest, QuartilesInterpolateBetweenOrderStatistics) {
+  const Quartiles q = quartiles({4.0, 1.0, 3.0, 2.0});
+  EXPECT_DOUBLE_EQ(q.q1, 1.75);
+  EXPECT_DOUBLE_EQ(q.median, 2.5);
+  EXPECT_DOUBLE_EQ(q.q3, 3.25);
+  const Quartiles odd = quartiles({0.9, 0.1, 0.5, 0.7, 0.3});
+  EXPECT_DOUBLE_EQ(odd.q1, 0.3);
+  EXPECT_DOUBLE_EQ(odd.median, 0.5);
+  EXPECT_DOUBLE_EQ(odd.q3, 0.7);
+  const Quartiles one = quartiles({0.42});
+  EXPECT_DOUBLE_EQ(one.q1, 0.42);
+  EXPECT_DOUBLE_EQ(one.q3, 0.42);
+  const Quartiles none = quartiles({});
+  EXPECT_DOUBLE_EQ(none.median, 0.0);
+}
+
+ExploreRow row(uint64_t seed, double coverage, double recall, double false_occupied, int contacts) {
+  ExploreRow r;
+  r.seed = seed;
+  r.family = "loop";
+  r.robots = 1;
+  r.coverage = coverage;
+  r.wall_recall = recall;
+  r.false_occupied_rate = false_occupied;
+  r.contacts = contacts;
+  r.endings = {{"jose", "done", "came home"}};
+  r.map_picture = "shared_map_evaluation.png";
+  return r;
+}
+
+TEST(ExploreBenchTest, CsvQuotesReasonsAndLeavesAFailedRunsScoresEmpty) {
+  ExploreRow ok = row(4, 0.95, 0.97, 0.002, 0);
+  ok.endings[0].reason = "said \"stop\", then stopped";
+  ExploreRow failed = row(5, 0.0, 0.0, 0.0, 0);
+  failed.failed = true;
+  failed.endings = {{"jose", "failed", "coopmap: error: disk full"}};
+  const std::string csv = formatExploreCsv({ok, failed});
+  EXPECT_EQ(csv,
+            "seed,family,floor_area_m2,robots,coverage,time_to_50_s,time_to_90_s,wall_recall,"
+            "false_occupied_rate,contacts,robot1,ending1,reason1,exploration_complete,"
+            "wall_time_s\n"
+            "4,loop,0.0,1,0.9500,-1,-1,0.9700,0.00200,0,jose,done,\"said \"\"stop\"\", then "
+            "stopped\",false,0.0\n"
+            "5,loop,0.0,1,,,,,,,jose,failed,\"coopmap: error: disk full\",false,0.0\n");
+}
+
+TEST(ExploreBenchTest, SummaryCountsTargetsAndListsTheWorstFirst) {
+  ExploreBenchOptions o;
+  o.first_seed = 1;
+  o.count = 7;
+  o.robots = 1;
+  std::vector<ExploreRow> rows = {
+      row(1, 0.95, 0.96, 0.005, 0),  // meets all four
+      row(2, 0.81, 0.96, 0.005, 0),  // coverage short
+      row(3, 0.95, 0.90, 0.005, 0),  // wall recall short
+      row(4, 0.95, 0.96, 0.020, 0),  // false-occupied high
+      row(5, 0.95, 0.96, 0.005, 1),  // a contact
+      row(6, 0.10, 0.50, 0.050, 3),  // worst
+      row(7, 0.0, 0.0, 0.0, 0),      // failed
+  };
+  rows[6].failed = true;
+  rows[6].endings = {{"jose", "failed", "killed by signal 6"}};
+  const std::string md = formatExploreMarkdown(o, rows);
+  EXPECT_NE(md.find("6 runs finished, 1 failed"), std::string::npos) << md;
+  EXPECT_NE(md.find("| coverage >= 0.90 | 4 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| wall_recall >= 0.95 | 4 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| false_occupied_rate <= 0.01 | 4 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| no contact | 4 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| all four | 1 |"), std::string::npos) << md;
+  // Coverage 0.10, 0.81, 0.95 x4: quartiles over the six that ran.
+  EXPECT_NE(md.find("| coverage | 0.845 | 0.950 | 0.950 |"), std::string::npos) << md;
+  // Five worst: 6, 2, then the first three of the ties in seed order; not seed 5 nor the
+  // failed one.
+  const size_t s6 = md.find("| 6 | loop"), s2 = md.find("| 2 | loop"), s4 = md.find("| 4 | loop");
+  ASSERT_NE(s6, std::string::npos) << md;
+  EXPECT_LT(s6, s2);
+  EXPECT_LT(s2, s4);
+  EXPECT_EQ(md.find("| 5 | loop"), std::string::npos) << md;
+  EXPECT_NE(md.find("[map](runs/6/shared_map_evaluation.png)"), std::string::npos) << md;
+  EXPECT_NE(md.find("- seed 7: killed by signal 6 ([log](runs/7.log))"), std::string::npos) << md;
+}
+
+TEST(ExploreBenchTest, ValidateNamesTheBadOption) {
+  auto message = [](auto change) {
+    ExploreBenchOptions o;
+    o.out_dir = "out";
+    change(o);
+    try {
+      o.validate();
+    } catch (const ConfigError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(message([](ExploreBenchOptions&) {}), "accepted");
+  EXPECT_EQ(message([](ExploreBenchOptions& o) { o.robots = 3; }),
+            "--robots: expected 1 or 2, got 3");
+  EXPECT_EQ(message([](ExploreBenchOptions& o) { o.count = 0; }),
+            "--count: expected at least 1, got 0");
+  EXPECT_EQ(message([](ExploreBenchOptions& o) { o.duration = 0.0; }),
+            "--duration: expected a positive number of seconds, got 0");
+  EXPECT_EQ(message([](ExploreBenchOptions& o) { o.jobs = 0; }),
+            "--jobs: expected at least 1, got 0");
+  EXPECT_EQ(message([](ExploreBenchOptions& o) { o.out_dir.clear(); }),
+            "--out: expected an output folder, none given");
+}
+
+}  // namespace
+}  // namespace coopmap
