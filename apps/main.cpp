@@ -10,6 +10,8 @@
 #include <utility>
 #include <vector>
 
+#include <unistd.h>
+
 #include <CLI/App.hpp>
 #include <CLI/Config.hpp>
 #include <CLI/Formatter.hpp>
@@ -51,6 +53,33 @@ const CLI::Validator kSeed(
     },
     "SEED");
 
+// A folder a command writes its outputs to, checked before any work: it exists as a writable
+// folder, or it can be created (its nearest existing ancestor is a writable folder).
+const CLI::Validator kOutputFolder(
+    [](std::string& path) -> std::string {
+      namespace fs = std::filesystem;
+      if (path.empty()) return "expected a folder to write to, got ''";
+      std::error_code ec;
+      if (fs::exists(path, ec)) {
+        if (!fs::is_directory(path, ec))
+          return "expected a folder to write to, '" + path + "' is a file";
+        if (::access(path.c_str(), W_OK) != 0)
+          return "expected a folder to write to, '" + path + "' is not writable";
+        return "";
+      }
+      fs::path ancestor = fs::absolute(path, ec).parent_path();
+      while (!ancestor.empty() && ancestor != ancestor.root_path() && !fs::exists(ancestor, ec))
+        ancestor = ancestor.parent_path();
+      if (!fs::is_directory(ancestor, ec))
+        return "expected a folder to write to, '" + path + "' cannot be created ('" +
+               ancestor.string() + "' is a file)";
+      if (::access(ancestor.c_str(), W_OK) != 0)
+        return "expected a folder to write to, '" + path + "' cannot be created ('" +
+               ancestor.string() + "' is not writable)";
+      return "";
+    },
+    "FOLDER");
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -58,6 +87,7 @@ int main(int argc, char** argv) {
       "coopmap: a simulation-first testbed for cooperative stereo-vision mapping with B-14 "
       "robots (Little, Jennings, Murray)."};
   app.require_subcommand(1);
+  app.set_version_flag("--version", COOPMAP_VERSION);
 
   coopmap::RunOptions run;
   std::string run_out;
@@ -72,7 +102,9 @@ int main(int argc, char** argv) {
   cmd_run->add_option("world", run.world_file, "World file (YAML), e.g. worlds/lab.yaml")
       ->required()
       ->check(CLI::ExistingFile);
-  cmd_run->add_option("--out", run_out, "Output folder (created if missing)")->required();
+  cmd_run->add_option("--out", run_out, "Output folder (created if missing)")
+      ->required()
+      ->check(kOutputFolder);
   cmd_run->add_option("--seed", run.seed, "Seed for every random choice of the run")
       ->check(kSeed)
       ->capture_default_str();
@@ -160,7 +192,9 @@ int main(int argc, char** argv) {
   cmd_replay->add_option("recording", replay.recording, "Recording folder")
       ->required()
       ->check(CLI::ExistingDirectory);
-  cmd_replay->add_option("--out", replay.out_dir, "Output folder (created if missing)")->required();
+  cmd_replay->add_option("--out", replay.out_dir, "Output folder (created if missing)")
+      ->required()
+      ->check(kOutputFolder);
 
   coopmap::StereoEvalOptions eval;
   std::string tsukuba;
@@ -256,7 +290,9 @@ int main(int argc, char** argv) {
   cmd_corners->add_option("map", corners.map_yaml, "Map YAML (map_server format)")
       ->required()
       ->check(CLI::ExistingFile);
-  cmd_corners->add_option("--out", corners.out_dir, "Output folder")->required();
+  cmd_corners->add_option("--out", corners.out_dir, "Output folder")
+      ->required()
+      ->check(kOutputFolder);
   cmd_corners->add_option("--arm-length", corners.arm_length, "Arm length of the corner model (m)")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
@@ -271,7 +307,9 @@ int main(int argc, char** argv) {
   cmd_carmen->add_option("log", carmen.log, "CARMEN log file (uncompressed)")
       ->required()
       ->check(CLI::ExistingFile);
-  cmd_carmen->add_option("--out", carmen.out_dir, "Output folder")->required();
+  cmd_carmen->add_option("--out", carmen.out_dir, "Output folder")
+      ->required()
+      ->check(kOutputFolder);
   cmd_carmen->add_option("--resolution", carmen.resolution, "Map resolution (m per cell)")
       ->capture_default_str();
   cmd_carmen
@@ -326,7 +364,7 @@ int main(int argc, char** argv) {
   cmd_drift->add_option("--world", drift.world_file, "World file with a home base and a loop")
       ->capture_default_str()
       ->check(CLI::ExistingFile);
-  cmd_drift->add_option("--out", drift.out_dir, "Output folder")->required();
+  cmd_drift->add_option("--out", drift.out_dir, "Output folder")->required()->check(kOutputFolder);
   cmd_drift->add_option("--seeds", drift.seeds, "Number of seeds")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
@@ -379,7 +417,9 @@ int main(int argc, char** argv) {
   cmd_traverse->add_option("log", trav.log_file, "Traverse log")
       ->required()
       ->check(CLI::ExistingFile);
-  cmd_traverse->add_option("--out", trav.out_dir, "Output folder")->required();
+  cmd_traverse->add_option("--out", trav.out_dir, "Output folder")
+      ->required()
+      ->check(kOutputFolder);
   cmd_traverse->add_option("--first", trav.first, "First entry used")->capture_default_str();
   cmd_traverse->add_option("--last", trav.last, "Last entry used (-1: the end)")
       ->capture_default_str();

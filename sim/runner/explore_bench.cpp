@@ -61,7 +61,8 @@ std::string readText(const std::string& path) {
   return s.str();
 }
 
-// The last non-blank line of a file ("" if none or unreadable).
+// The last non-blank line of a file ("" if none or unreadable), leaving out the command
+// line's hint after an option error (the error is the line before it).
 std::string lastLine(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   std::string line, last;
@@ -69,7 +70,7 @@ std::string lastLine(const std::string& path) {
     while (!line.empty() && std::isspace(static_cast<unsigned char>(line.back()))) line.pop_back();
     const size_t cr = line.find_last_of('\r');  // a progress bar's last redraw
     if (cr != std::string::npos) line = line.substr(cr + 1);
-    if (!line.empty()) last = line;
+    if (!line.empty() && line != "Run with --help for more information.") last = line;
   }
   return last;
 }

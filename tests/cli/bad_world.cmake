@@ -63,3 +63,22 @@ execute_process(COMMAND "${COOPMAP}" run "${SOURCE_DIR}/worlds/lab.yaml" --out "
 if(NOT rc EQUAL 2)
   message(FATAL_ERROR "an unknown option exited ${rc}, expected 2:\n${err}")
 endif()
+
+# --out is checked before any work: empty, a file, or under a file is refused with exit 2.
+file(WRITE "${WORK_DIR}/a_file" "not a folder")
+foreach(out "" "${WORK_DIR}/a_file" "${WORK_DIR}/a_file/sub")
+  execute_process(COMMAND "${COOPMAP}" run "${SOURCE_DIR}/worlds/lab.yaml" --out "${out}"
+                          --record "${WORK_DIR}/rec_for_bad_out" --quiet
+                  RESULT_VARIABLE rc ERROR_VARIABLE err)
+  if(NOT rc EQUAL 2 OR NOT err MATCHES "--out: expected a folder to write to")
+    message(FATAL_ERROR "--out '${out}' was not refused before the run (rc ${rc}):\n${err}")
+  endif()
+  if(EXISTS "${WORK_DIR}/rec_for_bad_out")
+    message(FATAL_ERROR "a run with a bad --out wrote its --record folder")
+  endif()
+endforeach()
+
+execute_process(COMMAND "${COOPMAP}" --version RESULT_VARIABLE rc OUTPUT_VARIABLE out)
+if(NOT rc EQUAL 0 OR NOT out MATCHES "^[0-9]+\\.[0-9]+\\.[0-9]+")
+  message(FATAL_ERROR "coopmap --version printed no version (rc ${rc}): ${out}")
+endif()
