@@ -128,11 +128,11 @@ int main(int argc, char** argv) {
                     "Autonomous missions instead of the routes: look at the home base, explore "
                     "frontiers with OMPL paths, come home when the budget is spent or nothing "
                     "reachable is left, look at the home base again (the default of a world "
-                    "with 'mission: explore')");
+                    "whose robots have no routes)");
   cmd_run
       ->add_flag("--routes", routes_flag,
-                 "Follow the scripted routes of the world file (the default unless the world "
-                 "says 'mission: explore')")
+                 "Follow the scripted routes of the world file (the default where it gives "
+                 "them)")
       ->excludes("--explore");
   // The agents' settings (core/agent/agent_settings.h): a settings file, then each as
   // --kebab-case-name VALUE, over the robot model's odometry calibration and coopmap's

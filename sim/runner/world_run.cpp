@@ -154,7 +154,11 @@ RunResult runWorld(const RunOptions& opt) {
     robot_settings.push_back(s);
   }
   const AgentSettings& settings = robot_settings.front();
-  const bool explore = opt.explore.value_or(!opt.steer_by_truth && world.mission == "explore");
+  // Unless the run says: the robots follow the routes the world gives them, and explore where
+  // it gives none.
+  const bool has_routes = std::any_of(world.robots.begin(), world.robots.end(),
+                                      [](const sim::RobotSpec& r) { return !r.route.empty(); });
+  const bool explore = opt.explore.value_or(!opt.steer_by_truth && !has_routes);
   if (opt.steer_by_truth && explore)
     throw std::invalid_argument("--steer-by-truth: the robots follow their routes, not explore");
 

@@ -173,9 +173,6 @@ struct World {
   double map_resolution = 0.05;     // m per cell for maps and ground truth
   double physics_rate = 200.0;      // Hz
   double control_rate = 20.0;       // Hz
-  // What `coopmap run` does by default: "routes" (each robot follows its scripted route) or
-  // "explore" (autonomous missions: sorties from the home base, shared map).
-  std::string mission = "routes";
 
   // The floor's rectangles: `floor_areas`, or the bounding rectangle if that is empty.
   std::vector<FloorArea> floorRects() const;

@@ -759,7 +759,7 @@ std::string emit(const Building& b, const std::string& header, const std::string
        "# Units: metres; angles in keys ending _deg.\n";
   o << "name: generated_" << family << "_" << seed << "\n";
   o << "seed: " << seed % (1u << 30) << "\n";
-  o << "mission: explore\n\n";
+  o << "\n";
   o << "simulation:\n  map_resolution: 0.05\n  physics_rate: 200\n  control_rate: 20\n\n";
   o << "textures:\n"
        "  carpet:  {type: noise,   tile: 2.0, feature: 0.03, mean: 105, contrast: 30}\n"

@@ -230,14 +230,12 @@ World parseWorld(const std::string& text, const std::string& file) {
   World w;
   w.file = file;
   w.name = root["name"].asString();
-  if (const auto mission = root.get("mission")) {
-    if (mission->isMap())
-      mission->failMessage(
-          "expected 'routes' or 'explore': the robots' settings are no part of a world (give "
-          "them with `coopmap run --settings FILE` or as flags)");
-    w.mission = mission->asString();
-    if (w.mission != "routes" && w.mission != "explore") mission->fail("'routes' or 'explore'");
-  }
+  if (const auto mission = root.get("mission"))
+    mission->failMessage(
+        "a world describes the world, not how robots run in it: `coopmap run` follows the "
+        "robots' routes where the world gives them and explores otherwise (--routes, "
+        "--explore), and the robots' settings are given with `coopmap run --settings FILE` or "
+        "as flags");
   if (root.has("seed")) w.seed = static_cast<uint64_t>(root["seed"].asInt(0, 1 << 30));
 
   const YamlField textures = root["textures"];

@@ -313,9 +313,8 @@ TEST(ExploreScenarioTest, TwoLooksThatDisagreeAreTakenAgain) {
 // The run's sortie budget reaches the agents; a bad one is refused before the run.
 TEST(ExploreScenarioTest, TheRunsSortieBudgetIsUsed) {
   RunOptions o;
-  const test_support::TestWorldFile world =
-      test_support::writeTestWorld("sortie_budget", R"(mission: explore
-floor: {min: [-1, -3], max: [4, 3], texture: carpet}
+  const test_support::TestWorldFile world = test_support::writeTestWorld(
+      "sortie_budget", R"(floor: {min: [-1, -3], max: [4, 3], texture: carpet}
 walls:
   - {from: [3.8, -3], to: [3.8, 3], thickness: 0.1, height: 2.5, texture: poster}
 home_base:

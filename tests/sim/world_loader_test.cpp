@@ -73,22 +73,16 @@ TEST(WorldLoaderTest, ShippedWorldsLoad) {
   }
 }
 
-TEST(WorldLoaderTest, MissionSaysWhatRunDoesByDefault) {
-  EXPECT_EQ(parseWorld(minimal(), "w.yaml").mission, "routes");
-  EXPECT_EQ(parseWorld("mission: explore\n" + minimal(), "w.yaml").mission, "explore");
-  EXPECT_EQ(loadWorld(kSrc + "/worlds/lab_corridor.yaml").mission, "explore");
-  const std::string e = errorOf("mission: wander\n" + minimal());
-  EXPECT_NE(e.find("w.yaml:1:10: mission: expected 'routes' or 'explore', got 'wander'"),
-            std::string::npos)
-      << e;
-}
-
-TEST(WorldLoaderTest, RobotsSettingsAreNoPartOfAWorld) {
-  const std::string e = errorOf("mission: {mode: explore, safety_distance: 0.4}\n" + minimal());
-  EXPECT_NE(e.find("w.yaml:1:10: mission: expected 'routes' or 'explore': the robots' settings "
-                   "are no part of a world"),
-            std::string::npos)
-      << e;
+// How robots run and with what settings is the command's choice, not the world's.
+TEST(WorldLoaderTest, HowRobotsRunIsNoPartOfAWorld) {
+  for (const char* mission :
+       {"mission: explore\n", "mission: {mode: explore, safety_distance: 0.4}\n"}) {
+    const std::string e = errorOf(mission + minimal());
+    EXPECT_NE(e.find("w.yaml:1:10: mission: a world describes the world, not how robots run in "
+                     "it"),
+              std::string::npos)
+        << e;
+  }
 }
 
 TEST(WorldLoaderTest, NegativeThicknessNamesLineAndField) {
