@@ -113,6 +113,7 @@ HomeBaseCooperation::HomeBaseCooperation(std::string robot, const HomeBase& nomi
 HomeBaseCooperation::SharedView::SharedView(const SharedMapService& shared,
                                             const AlignmentConfig& config) {
   const SharedMapSnapshot snap = shared.snapshot();
+  version = snap.version;
   if (snap.version == 0) return;
   map.emplace(shared.limits(), shared.config());
   map->assign(snap.log_odds, snap.seen);
@@ -123,6 +124,9 @@ HomeBaseCooperation::Located HomeBaseCooperation::locateSortie(const TraverseLog
                                                                const SharedView& view,
                                                                size_t look_from) const {
   Located l;
+  l.entries = sortie.entries.size();
+  l.look_from = look_from;
+  l.shared_version = view.version;
   SortieReport& rep = l.rep;
   rep.sortie = static_cast<int>(reports_.size()) + 1;
   rep.entries = sortie.entries.size();
@@ -335,23 +339,28 @@ void HomeBaseCooperation::joinTeamFrame(const TraverseLog& sortie, const ScanAli
   rep.method += note;
 }
 
-SortieReport HomeBaseCooperation::locate(const TraverseLog& sortie,
-                                         const std::optional<Eigen::Vector2d>& expected,
-                                         size_t look_from) const {
-  SortieReport rep =
-      locateSortie(sortie, SharedView(*shared_, config_.closure_alignment), look_from).rep;
-  checkExpected(rep, expected);
-  return rep;
+HomeBaseCooperation::Located HomeBaseCooperation::locate(
+    const TraverseLog& sortie, const std::optional<Eigen::Vector2d>& expected,
+    size_t look_from) const {
+  Located l = locateSortie(sortie, SharedView(*shared_, config_.closure_alignment), look_from);
+  l.expected = expected;
+  checkExpected(l.rep, expected);
+  return l;
 }
 
 SortieReport HomeBaseCooperation::endSortie(const TraverseLog& sortie,
                                             const std::optional<Eigen::Vector2d>& expected,
-                                            const std::vector<Pose2>* estimate, size_t look_from) {
+                                            const std::vector<Pose2>* estimate, size_t look_from,
+                                            const Located* located) {
   // The shared map as it is now, prepared for alignment (once).
   const SharedView view(*shared_, config_.closure_alignment);
-  Located l = locateSortie(sortie, view, look_from);
+  const bool same = located && located->entries == sortie.entries.size() &&
+                    located->look_from == look_from && located->expected == expected &&
+                    located->shared_version == view.version &&
+                    located->rep.sortie == static_cast<int>(reports_.size()) + 1;
+  Located l = same ? *located : locateSortie(sortie, view, look_from);
+  if (!same) checkExpected(l.rep, expected);
   SortieReport& rep = l.rep;
-  checkExpected(rep, expected);
   auto done = [&]() {
     rep.map_version = shared_->snapshot().version;
     reports_.push_back(rep);

@@ -234,17 +234,32 @@ class HomeBaseCooperation {
   // shared map also try each stretch where the estimate had it (see mapClosures). Entries
   // before `look_from` are never part of the look (the return turn): a robot that looked
   // again where it stood would otherwise see what hid the home base at its earlier look.
+  //
+  // `located`: what locate() found for this very sortie, look and expectation (the robot
+  // accepted that fix): taken over instead of localizing again.
+  struct Located;
   SortieReport endSortie(const TraverseLog& sortie,
                          const std::optional<Eigen::Vector2d>& expected = std::nullopt,
-                         const std::vector<Pose2>* estimate = nullptr, size_t look_from = 0);
+                         const std::vector<Pose2>* estimate = nullptr, size_t look_from = 0,
+                         const Located* located = nullptr);
   // Localizes only (nothing posted, nothing registered): where is the robot now? For a
   // robot that came back away from its start: it drives to the start by this fix and
   // looks again, so that endSortie sees the home base as the reference scans did. With
   // `expected`, the same trust check as endSortie's: before endSortie, it tells whether the
   // look after driving there agrees with the first (when not, one of the two was wrong).
-  SortieReport locate(const TraverseLog& sortie,
-                      const std::optional<Eigen::Vector2d>& expected = std::nullopt,
-                      size_t look_from = 0) const;
+  // The report is `rep` of the result.
+  struct Located {
+    SortieReport rep;
+    PoseObservation observation;               // in the sortie's entries, when rep.fixed
+    std::optional<HomeBaseProtocol> protocol;  // the first sortie's registration
+    // What it was located from: endSortie takes it over only for the same.
+    size_t entries = 0, look_from = 0;
+    std::optional<Eigen::Vector2d> expected;
+    uint64_t shared_version = 0;
+  };
+  Located locate(const TraverseLog& sortie,
+                 const std::optional<Eigen::Vector2d>& expected = std::nullopt,
+                 size_t look_from = 0) const;
 
   const std::vector<SortieReport>& reports() const { return reports_; }
   // Every entry of the sorties posted so far at its corrected pose (map frame), in order.
@@ -262,11 +277,6 @@ class HomeBaseCooperation {
   std::optional<OccupancyGrid> reference_;
   std::vector<SortieReport> reports_;
   std::vector<StampedPose2> corrected_;
-  struct Located {
-    SortieReport rep;
-    PoseObservation observation;               // in the sortie's entries, when rep.fixed
-    std::optional<HomeBaseProtocol> protocol;  // the first sortie's registration
-  };
   // The shared map as it is now, prepared for alignment once per sortie (no aligner before
   // the first post).
   struct SharedView {
@@ -275,6 +285,7 @@ class HomeBaseCooperation {
     SharedView& operator=(const SharedView&) = delete;
     std::optional<OccupancyGrid> map;
     std::optional<ScanAligner> aligner;  // over *map
+    uint64_t version = 0;                // of the snapshot
   };
   Located locateSortie(const TraverseLog& sortie, const SharedView& view, size_t look_from) const;
   // The rival check (CooperationConfig::rival_search_m) of a located sortie's fix against

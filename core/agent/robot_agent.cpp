@@ -512,10 +512,13 @@ void RobotAgent::endSortie(double now) {
   for (size_t j = 0; j < sortie.entries.size(); ++j)
     sortie.entries[j].scan.odometry = sortie_frame_ * mapper_->rawOdometry()[sortie_begin_ + j];
   if (calibrate_ && stereo_scale_) calibrateStereoScale(sortie);
+  // The last look's localization, which endSortie takes over when the robot accepts it.
+  std::optional<HomeBaseCooperation::Located> located;
   if (!reapproaching_) {
     // Back away from the start (odometry drifted): the home base looks different from
     // there. Drive to the start by a first fix and look again.
-    const SortieReport first = coop_->locate(sortie, std::nullopt, look_from_);
+    located = coop_->locate(sortie, std::nullopt, look_from_);
+    const SortieReport& first = located->rep;
     if (!first.fixed && looks_again_ < kLooksAgain) {
       // No fix from this look (someone in the view, the look fitting the shared map
       // elsewhere): to the start as the live estimate places it (the estimate brought the
@@ -548,7 +551,8 @@ void RobotAgent::endSortie(double now) {
   std::optional<Eigen::Vector2d> expected;
   if (reapproaching_) expected = home_.translation();
   if (reapproaching_ && looks_again_ < kLooksAgain) {
-    const SortieReport second = coop_->locate(sortie, expected, look_from_);
+    located = coop_->locate(sortie, expected, look_from_);
+    const SortieReport& second = located->rep;
     if (!second.fixed) {
       // The look after driving to the start by the first fix disagrees with it (or found
       // nothing): one of the two was wrong and the robot cannot tell which. Back to the
@@ -566,7 +570,8 @@ void RobotAgent::endSortie(double now) {
   }
   reapproaching_ = false;
   looks_again_ = 0;
-  const SortieReport rep = coop_->endSortie(sortie, expected, &estimate, look_from_);
+  const SortieReport rep =
+      coop_->endSortie(sortie, expected, &estimate, look_from_, located ? &*located : nullptr);
   look_from_ = 0;
   if (rep.fixed) mapper_->setFrame(rep.correction * sortie_frame_);
   // Joining the team's frame moved the start too.

@@ -51,16 +51,40 @@ double distanceToSegment(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
   return (p - (a + t * ab)).norm();
 }
 
-// Which arm lies nearest `p` (an index of HomeBaseDesign::arms()), and how near (m).
-std::pair<size_t, double> nearestArm(const std::vector<HomeBaseDesign::Arm>& arms,
+// Which arm lies nearest `p` (an index into `arm_faces`, one entry per arm of
+// HomeBaseDesign::arms()), and how near (m).
+std::pair<size_t, double> nearestArm(const std::vector<std::vector<Face>>& arm_faces,
                                      const Eigen::Vector2d& p) {
   std::pair<size_t, double> best{0, 1e300};
-  for (size_t k = 0; k < arms.size(); ++k)
-    for (const Face& f : facesOf(arms[k])) {
+  for (size_t k = 0; k < arm_faces.size(); ++k)
+    for (const Face& f : arm_faces[k]) {
       const double d = distanceToSegment(p, f.a, f.b);
       if (d < best.second) best = {k, d};
     }
   return best;
+}
+
+// How many of the turn's points a placement puts within `reach` of each arm, and whether
+// that makes a view of the home base: enough points on each L, and on three of its four arms.
+struct ArmSupport {
+  std::vector<int> on;
+  int total() const { return on[0] + on[1] + on[2] + on[3]; }
+  bool enough() const {
+    int arms_seen = 0;
+    for (int n : on) arms_seen += n >= kMinPointsPerArm;
+    return arms_seen >= 3 && std::min(on[0] + on[1], on[2] + on[3]) >= kMinPointsPerCorner;
+  }
+};
+
+ArmSupport armSupport(const std::vector<std::vector<Face>>& arm_faces,
+                      const std::vector<Eigen::Vector2d>& points, const Pose2& placement,
+                      double reach) {
+  ArmSupport out{std::vector<int>(arm_faces.size(), 0)};
+  for (const Eigen::Vector2d& p : points) {
+    const auto [k, d] = nearestArm(arm_faces, placement * p);
+    if (d <= reach) ++out.on[k];
+  }
+  return out;
 }
 
 // The whole turn, then arcs of it kArcRad long every kArcRad / 2 (by the odometry's heading).
@@ -155,7 +179,6 @@ StartFix localizeStart(const TraverseLog& log, const HomeBaseDesign& design,
   CornerConfig corner_config = config.corners;
   corner_config.arm_cells = design.arm_length / config.resolution;
   const HomeBase visible = design.visibleCorners();
-  const std::vector<HomeBaseDesign::Arm> arms = design.arms();
 
   // Where is the home base? Each corner of the whole turn's map placed on either designed
   // corner, aligned, and scored by the turn's points on the arms.
@@ -183,24 +206,30 @@ StartFix localizeStart(const TraverseLog& log, const HomeBaseDesign& design,
                                      Eigen::Vector2d(std::cos(design.corners.second.heading),
                                                      std::sin(design.corners.second.heading)))
                                         .normalized();
+  std::vector<std::vector<Face>> arm_faces;
+  for (const HomeBaseDesign::Arm& arm : design.arms()) arm_faces.push_back(facesOf(arm));
   int best_support = 0;
   Pose2 placed;
+  std::vector<Pose2> tried;
   for (const Corner& c : found) {
     for (const Corner* designed : {&visible.first, &visible.second}) {
-      const AlignmentResult a = searcher.align(turn_scans, placing(c, *designed));
+      const Pose2 guess = placing(c, *designed);
+      // The same corner found in the whole turn and in an arc aligns the same way.
+      if (std::any_of(tried.begin(), tried.end(), [&](const Pose2& t) {
+            return (t.translation() - guess.translation()).norm() < 1e-4 &&
+                   std::abs(wrapAngle(t.theta - guess.theta)) < 1e-4;
+          }))
+        continue;
+      tried.push_back(guess);
+      // The alignment pulls only points within the search's reach of the arms: a placement
+      // without a view of the home base there cannot align into one.
+      if (!armSupport(arm_faces, points, guess, kSearchReach).enough()) continue;
+      const AlignmentResult a = searcher.align(turn_scans, guess);
       if (!a.ok) continue;
       const Eigen::Vector2d from_home = (a.correction * at_turn).translation() - home_mid;
       if (from_home.normalized().dot(open_side) < std::cos(kMaxBearingRad)) continue;
-      std::vector<int> on(arms.size(), 0);
-      for (const Eigen::Vector2d& p : points) {
-        const auto [k, d] = nearestArm(arms, a.correction * p);
-        if (d <= kModelInlier) ++on[k];
-      }
-      int arms_seen = 0;
-      for (int n : on) arms_seen += n >= kMinPointsPerArm;
-      const int first = on[0] + on[1], second = on[2] + on[3];
-      const int support =
-          arms_seen >= 3 && std::min(first, second) >= kMinPointsPerCorner ? first + second : 0;
+      const ArmSupport on = armSupport(arm_faces, points, a.correction, kModelInlier);
+      const int support = on.enough() ? on.total() : 0;
       if (support > best_support) {
         best_support = support;
         placed = a.correction;

@@ -1,9 +1,9 @@
 #include "core/localization/scan_alignment.h"
 
-#include <ceres/autodiff_cost_function.h>
 #include <ceres/cubic_interpolation.h>
 #include <ceres/loss_function.h>
 #include <ceres/problem.h>
+#include <ceres/sized_cost_function.h>
 #include <ceres/solver.h>
 
 #include <cmath>
@@ -20,23 +20,35 @@ namespace {
 using Field = ceres::Grid2D<float, 1>;
 using Interpolator = ceres::BiCubicInterpolator<Field>;
 
-// Distance (cells) from a point's place in the reference to the nearest occupied cell.
-struct PointResidual {
+// Distance (cells) from a point's place in the reference to the nearest occupied cell, and
+// its derivatives by the pose (x, y, theta) from the interpolated field's own gradient.
+class PointResidual final : public ceres::SizedCostFunction<1, 3> {
+ public:
   PointResidual(const Interpolator* field, const Eigen::Vector2d& p, const MapLimits& limits)
-      : field(field), p(p), limits(limits) {}
-  template <typename T>
-  bool operator()(const T* pose, T* r) const {
-    const T c = cos(pose[2]), s = sin(pose[2]);
-    const T x = pose[0] + c * T(p.x()) - s * T(p.y());
-    const T y = pose[1] + s * T(p.x()) + c * T(p.y());
-    const T col = (x - T(limits.origin.x())) / T(limits.resolution) - T(0.5);
-    const T row = (y - T(limits.origin.y())) / T(limits.resolution) - T(0.5);
-    field->Evaluate(row, col, r);
+      : field_(field), p_(p), limits_(limits) {}
+  bool Evaluate(double const* const* parameters, double* residual,
+                double** jacobians) const override {
+    const double* pose = parameters[0];
+    const double c = std::cos(pose[2]), s = std::sin(pose[2]);
+    const double x = pose[0] + c * p_.x() - s * p_.y();
+    const double y = pose[1] + s * p_.x() + c * p_.y();
+    const double col = (x - limits_.origin.x()) / limits_.resolution - 0.5;
+    const double row = (y - limits_.origin.y()) / limits_.resolution - 0.5;
+    double d_row = 0.0, d_col = 0.0;
+    field_->Evaluate(row, col, residual, &d_row, &d_col);
+    if (jacobians && jacobians[0]) {
+      const double gx = d_col / limits_.resolution, gy = d_row / limits_.resolution;
+      jacobians[0][0] = gx;
+      jacobians[0][1] = gy;
+      jacobians[0][2] = gx * (-s * p_.x() - c * p_.y()) + gy * (c * p_.x() - s * p_.y());
+    }
     return true;
   }
-  const Interpolator* field;
-  Eigen::Vector2d p;
-  MapLimits limits;
+
+ private:
+  const Interpolator* field_;
+  Eigen::Vector2d p_;
+  MapLimits limits_;
 };
 
 }  // namespace
@@ -200,9 +212,7 @@ AlignmentResult ScanAligner::align(const std::vector<const RadialMap*>& scans,
   for (size_t i = 0; i < pts.size(); ++i) {
     ceres::LossFunction* loss = new ceres::TukeyLoss(config_.robust_scale);
     if (weights[i] < 1.0) loss = new ceres::ScaledLoss(loss, weights[i], ceres::TAKE_OWNERSHIP);
-    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PointResidual, 1, 3>(
-                                 new PointResidual(&interpolator, pts[i], lim)),
-                             loss, pose);
+    problem.AddResidualBlock(new PointResidual(&interpolator, pts[i], lim), loss, pose);
   }
   ceres::Solver::Options options;
   options.max_num_iterations = config_.max_iterations;
@@ -213,27 +223,20 @@ AlignmentResult ScanAligner::align(const std::vector<const RadialMap*>& scans,
   ceres::Solve(options, &problem, &summary);
   result.iterations = static_cast<int>(summary.iterations.size());
   result.correction = Pose2(pose[0], pose[1], wrapAngle(pose[2]));
+  // Inliers, their RMS and the information of the solution: J^T W J over the inliers.
   double sq = 0.0;
-  for (const Eigen::Vector2d& p : pts) {
-    double d;
-    PointResidual(&interpolator, p, lim)(pose, &d);
-    if (std::abs(d) <= config_.inlier_cells) {
-      ++result.inliers;
-      sq += d * d;
-    }
-  }
-  result.rms_cells = result.inliers > 0 ? std::sqrt(sq / result.inliers) : 0.0;
-  // Information of the solution: J^T W J over the inliers.
+  const double* params[1] = {pose};
   for (size_t i = 0; i < pts.size(); ++i) {
-    const ceres::AutoDiffCostFunction<PointResidual, 1, 3> cost(
-        new PointResidual(&interpolator, pts[i], lim));
     double d = 0.0, jac[3] = {0.0, 0.0, 0.0};
-    const double* params[1] = {pose};
     double* jacobians[1] = {jac};
-    if (!cost.Evaluate(params, &d, jacobians) || std::abs(d) > config_.inlier_cells) continue;
+    PointResidual(&interpolator, pts[i], lim).Evaluate(params, &d, jacobians);
+    if (std::abs(d) > config_.inlier_cells) continue;
+    ++result.inliers;
+    sq += d * d;
     const Eigen::Vector3d j(jac[0], jac[1], jac[2]);
     result.information += weights[i] * j * j.transpose();
   }
+  result.rms_cells = result.inliers > 0 ? std::sqrt(sq / result.inliers) : 0.0;
   if (result.inliers < config_.min_inlier_share * result.points) {
     char share[32];
     std::snprintf(share, sizeof share, "%.2f", config_.min_inlier_share);

@@ -93,7 +93,7 @@ TEST(CooperationTest, SortieWithoutAHomeBaseInViewIsNotShared) {
     e.scan.readings.assign(20, miss);
     log.entries.push_back(e);
   }
-  const SortieReport first = coop.locate(log);
+  const SortieReport first = coop.locate(log).rep;
   EXPECT_FALSE(first.fixed);
   EXPECT_TRUE(coop.reports().empty()) << "locate records nothing";
   const SortieReport r = coop.endSortie(log);
@@ -187,7 +187,7 @@ TEST(CooperationTest, AFixThatOnlyTurnsTheRobotIsNotTakenForAMove) {
   constexpr double kOff = 0.3;
   for (TraverseEntry& e : second.entries)
     e.scan.odometry.theta = wrapAngle(e.scan.odometry.theta + kOff);
-  const SortieReport r = coop.locate(second);
+  const SortieReport r = coop.locate(second).rep;
   ASSERT_TRUE(r.fixed) << r.method;
   EXPECT_GT(r.correction.translation().norm(), config.max_fix_jump_m) << "the lever of the turn";
   EXPECT_LT((r.fix.translation() - home).norm(), 0.05);
@@ -203,7 +203,7 @@ TEST(CooperationTest, AFixThatOnlyTurnsTheRobotIsNotTakenForAMove) {
   third.robot = "jose";
   lookAround(third, home, 0.5, t);
   for (TraverseEntry& e : third.entries) e.scan.odometry.x += 0.7;
-  const SortieReport far = coop.locate(third);
+  const SortieReport far = coop.locate(third).rep;
   EXPECT_FALSE(far.fixed);
   EXPECT_NE(far.method.find("farther than it can be off"), std::string::npos) << far.method;
 }
