@@ -19,6 +19,7 @@
 #include "core/agent/agent_settings.h"
 #include "core/io/atomic_file.h"
 #include "core/io/json_writer.h"
+#include "core/io/output_folder.h"
 #include "core/io/robot_outputs.h"
 #include "core/io/yaml_reader.h"
 #include "core/landmarks/corner_report.h"
@@ -53,32 +54,10 @@ const CLI::Validator kSeed(
     },
     "SEED");
 
-// A folder a command writes its outputs to, checked before any work: it exists as a writable
-// folder, or it can be created (its nearest existing ancestor is a writable folder).
+// A folder a command writes its outputs to, checked before any work: absent (and can be
+// created), empty, or one coopmap wrote; outputs replace it all or nothing (OutputFolder).
 const CLI::Validator kOutputFolder(
-    [](std::string& path) -> std::string {
-      namespace fs = std::filesystem;
-      if (path.empty()) return "expected a folder to write to, got ''";
-      std::error_code ec;
-      if (fs::exists(path, ec)) {
-        if (!fs::is_directory(path, ec))
-          return "expected a folder to write to, '" + path + "' is a file";
-        if (::access(path.c_str(), W_OK) != 0)
-          return "expected a folder to write to, '" + path + "' is not writable";
-        return "";
-      }
-      fs::path ancestor = fs::absolute(path, ec).parent_path();
-      while (!ancestor.empty() && ancestor != ancestor.root_path() && !fs::exists(ancestor, ec))
-        ancestor = ancestor.parent_path();
-      if (!fs::is_directory(ancestor, ec))
-        return "expected a folder to write to, '" + path + "' cannot be created ('" +
-               ancestor.string() + "' is a file)";
-      if (::access(ancestor.c_str(), W_OK) != 0)
-        return "expected a folder to write to, '" + path + "' cannot be created ('" +
-               ancestor.string() + "' is not writable)";
-      return "";
-    },
-    "FOLDER");
+    [](std::string& path) -> std::string { return coopmap::outputFolderProblem(path); }, "FOLDER");
 
 }  // namespace
 
@@ -119,10 +98,12 @@ int main(int argc, char** argv) {
   cmd_run->add_flag("--steer-by-truth", run.steer_by_truth,
                     "Follow the route by the true pose, as a person driving it would: the path "
                     "is the intended one and odometry only records it (drift experiments)");
-  cmd_run->add_option("--record", run.record_dir,
-                      "Record each robot's raw stream (camera images, stamps, odometry, "
-                      "commands, rig and robot description) and the ground truth into this "
-                      "folder, for `coopmap replay` (layout: its README.md)");
+  cmd_run
+      ->add_option("--record", run.record_dir,
+                   "Record each robot's raw stream (camera images, stamps, odometry, "
+                   "commands, rig and robot description) and the ground truth into this "
+                   "folder, for `coopmap replay` (layout: its README.md)")
+      ->check(kOutputFolder);
   bool explore_flag = false, routes_flag = false;
   cmd_run->add_flag("--explore", explore_flag,
                     "Autonomous missions instead of the routes: look at the home base, explore "
@@ -405,7 +386,9 @@ int main(int argc, char** argv) {
       ->add_option("--jobs", explore_bench.jobs,
                    "Worlds run at once (default: the number of processors)")
       ->capture_default_str();
-  cmd_explore_bench->add_option("--out", explore_bench.out_dir, "Output folder")->required();
+  cmd_explore_bench->add_option("--out", explore_bench.out_dir, "Output folder")
+      ->required()
+      ->check(kOutputFolder);
   bool explore_bench_quiet = false;
   cmd_explore_bench->add_flag("--quiet", explore_bench_quiet, "No line per world on stderr");
 
@@ -466,8 +449,9 @@ int main(int argc, char** argv) {
                    "the position error's part along the true heading (along) or across it "
                    "(across)")
       ->check(CLI::IsMember({"position", "heading", "along", "across"}));
-  cmd_remap->add_option("--out", remap.out_dir,
-                        "Folder for map.{pgm,yaml,png} and map_evaluation.png");
+  cmd_remap
+      ->add_option("--out", remap.out_dir, "Folder for map.{pgm,yaml,png} and map_evaluation.png")
+      ->check(kOutputFolder);
   cmd_remap
       ->add_option("--band", remap.band,
                    "Each return drawn over this share of its modelled range sigma (the "
@@ -514,9 +498,11 @@ int main(int argc, char** argv) {
   cmd_robot->add_flag("--dry-run", robot_options.dry_run,
                       "Check the config and that the controller answers; move nothing");
   cmd_robot->add_flag("--quiet", robot_options.quiet, "No progress lines");
-  cmd_robot->add_option("--out", robot_options.out_dir,
-                        "With a mission: folder for the robot's map (map_<robot>.pgm/.yaml/.png), "
-                        "traverse log and odometry (created if missing)");
+  cmd_robot
+      ->add_option("--out", robot_options.out_dir,
+                   "With a mission: folder for the robot's map (map_<robot>.pgm/.yaml/.png), "
+                   "traverse log and odometry (created if missing)")
+      ->check(kOutputFolder);
 
   coopmap::CalibrateOptions calibrate;
   auto* cmd_calibrate = app.add_subcommand(
@@ -568,16 +554,31 @@ int main(int argc, char** argv) {
     return app.exit(e) == 0 ? 0 : 2;
   }
 
+  // Each command writes into a staging folder and puts it in place when it is done (all or
+  // nothing); the messages name the folder as given.
+  std::optional<coopmap::OutputFolder> out_folder, record_folder;
+  auto stage = [](std::optional<coopmap::OutputFolder>& folder, std::string& dir,
+                  const char* command) {
+    if (dir.empty()) return std::string();
+    const std::string given = dir;
+    folder.emplace(dir, command);
+    dir = folder->path().string();
+    return given;
+  };
+  auto commit = [](std::optional<coopmap::OutputFolder>& folder) {
+    if (folder) folder->commit();
+  };
   try {
     if (cmd_robot->parsed()) {
       coopmap::RobotMissionResult mission;
       const int code = coopmap::runRobotCommand(robot_options, stdout, &mission);
       if (!robot_options.out_dir.empty() && mission.grid) {
-        std::filesystem::create_directories(robot_options.out_dir);
+        const std::string given = stage(out_folder, robot_options.out_dir, "coopmap robot");
         coopmap::writeRobotOutputs(robot_options.out_dir,
                                    {mission.name, "", &*mission.grid, nullptr, &mission.odometry,
                                     nullptr, &mission.traverse, mission.odometry_in_map});
-        std::printf("outputs in %s\n", robot_options.out_dir.c_str());
+        commit(out_folder);
+        std::printf("outputs in %s\n", given.c_str());
       }
       return code;
     }
@@ -617,9 +618,19 @@ int main(int argc, char** argv) {
                   w.family.c_str(), w.floor_area, w.rooms, w.doors);
     }
     if (cmd_calibrate->parsed()) std::printf("%s", coopmap::runCalibrate(calibrate).report.c_str());
-    if (cmd_traverse->parsed()) coopmap::printTraverseSummary(trav, coopmap::runTraverse(trav));
+    if (cmd_traverse->parsed()) {
+      const std::string given = stage(out_folder, trav.out_dir, "coopmap traverse");
+      const coopmap::TraverseSummary r = coopmap::runTraverse(trav);
+      commit(out_folder);
+      trav.out_dir = given;
+      coopmap::printTraverseSummary(trav, r);
+    }
     if (cmd_remap->parsed()) {
-      coopmap::printRemapSummary(remap, coopmap::runRemap(remap));
+      const std::string given = stage(out_folder, remap.out_dir, "coopmap remap");
+      const coopmap::RemapSummary r = coopmap::runRemap(remap);
+      commit(out_folder);
+      remap.out_dir = given;
+      coopmap::printRemapSummary(remap, r);
     }
     if (cmd_scale->parsed()) coopmap::printStereoScaleSummary(coopmap::runStereoScale(scale));
     if (cmd_drift->parsed()) {
@@ -637,15 +648,18 @@ int main(int argc, char** argv) {
       }
       drift.camera_noise = !drift_no_noise;
       drift.progress = !drift_quiet;
+      const std::string given = stage(out_folder, drift.out_dir, "coopmap bench drift");
       const coopmap::DriftBenchResult r = coopmap::runDriftBench(drift);
+      commit(out_folder);
       std::printf("%s\n%s/drift.csv, drift.md and seeds/ written\n", r.markdown.c_str(),
-                  drift.out_dir.c_str());
+                  given.c_str());
     }
     if (cmd_explore_bench->parsed()) {
       explore_bench.progress = !explore_bench_quiet;
+      const std::string given = stage(out_folder, explore_bench.out_dir, "coopmap bench explore");
       coopmap::runExploreBench(explore_bench);
-      std::printf("%s/explore.csv, explore.md, worlds/ and runs/ written\n",
-                  explore_bench.out_dir.c_str());
+      commit(out_folder);
+      std::printf("%s/explore.csv, explore.md, worlds/ and runs/ written\n", given.c_str());
     }
     if (cmd_fit->parsed()) {
       const coopmap::OdometryFitResult r = coopmap::runOdometryFit(fit);
@@ -671,21 +685,25 @@ int main(int argc, char** argv) {
           p.heading_noise);
     }
     if (cmd_corners->parsed()) {
+      const std::string given = stage(out_folder, corners.out_dir, "coopmap corners");
       const coopmap::CornersResult r = coopmap::runCorners(corners);
+      commit(out_folder);
       std::printf(
           "%zu corners (%d candidates, %d rejected by RMS, %d not converged, %d edge "
           "cells); %s/corners.png and corners.json written\n",
           r.search.corners.size(), r.search.candidates, r.search.rejected_rms,
-          r.search.not_converged, r.edge_cells, corners.out_dir.c_str());
+          r.search.not_converged, r.edge_cells, given.c_str());
     }
     if (cmd_carmen->parsed()) {
+      const std::string given = stage(out_folder, carmen.out_dir, "coopmap carmen");
       const coopmap::CarmenResult r = coopmap::runCarmen(carmen);
+      commit(out_folder);
       const coopmap::MapLimits& lim = r.grid->limits();
       std::printf(
           "%d scans of laser %d over %.1f s, odometry path %.1f m; map %d x %d cells at %.3f "
           "m: %d occupied, %d free; %zu corners; outputs in %s\n",
           r.scans, r.laser, r.duration_s, r.path_length_m, lim.width, lim.height, lim.resolution,
-          r.occupied_cells, r.free_cells, r.corners.search.corners.size(), carmen.out_dir.c_str());
+          r.occupied_cells, r.free_cells, r.corners.search.corners.size(), given.c_str());
     }
     if (cmd_eval->parsed()) {
       if (!tsukuba.empty()) {
@@ -725,12 +743,14 @@ int main(int argc, char** argv) {
                                    : coopmap::agentSettingsYaml(coopmap::AgentSettings{}).c_str(),
                  stdout);
     if (cmd_replay->parsed()) {
+      const std::string given = stage(out_folder, replay.out_dir, "coopmap replay");
       const coopmap::ReplayResult r = coopmap::runReplay(replay);
+      commit(out_folder);
       for (const auto& robot : r.robots)
         std::printf("%s: %d frames over %.1f s, odometry path %.1f m\n", robot.name.c_str(),
                     robot.frames, robot.duration_s, robot.odometry_path_length_m);
       std::printf("replayed %s in %.1f s wall; outputs in %s\n", replay.recording.c_str(),
-                  r.wall_time_s, replay.out_dir.c_str());
+                  r.wall_time_s, given.c_str());
     }
     if (cmd_run->parsed()) {
       if (explore_flag) run.explore = true;
@@ -753,8 +773,12 @@ int main(int argc, char** argv) {
           std::printf("%.1f s %s: %s\n", t, robot.c_str(), event.c_str());
         };
       run.share_maps = true;
+      const std::string given = stage(out_folder, run_out, "coopmap run");
+      stage(record_folder, run.record_dir, "coopmap run --record");
       const coopmap::RunResult r = coopmap::runWorld(run);
       coopmap::writeRunOutputs(run_out, r);
+      commit(record_folder);
+      commit(out_folder);
       for (const auto& robot : r.robots)
         std::printf(
             "%s: path %.1f m, %d frames, collisions %d, wall_recall %.3f, "
@@ -800,7 +824,7 @@ int main(int argc, char** argv) {
           "simulated %.1f s in %.1f s wall (%.1fx real time: physics %.1f s, render "
           "%.1f s, stereo %.1f s, mapping %.1f s); outputs in %s\n",
           r.sim_time_s, r.wall_time_s, r.real_time_factor, r.timing.physics_s, r.timing.render_s,
-          r.timing.stereo_s, r.timing.mapping_s, run_out.c_str());
+          r.timing.stereo_s, r.timing.mapping_s, given.c_str());
     }
   } catch (const coopmap::ConfigError& e) {
     std::fprintf(stderr, "coopmap: %s\n", e.what());
