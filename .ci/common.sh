@@ -9,10 +9,14 @@ PACKAGES=(
   libompl-dev libboost-serialization-dev libboost-filesystem-dev libboost-system-dev
   libgtest-dev libbenchmark-dev libcli11-dev libceres-dev zlib1g-dev
 )
+# The test command's fuzzing pass (bench/fuzz) also needs clang and its libFuzzer.
+FUZZ_PACKAGES=(clang libclang-rt-14-dev)
+
+# install_packages [more packages...]: PACKAGES and these.
 
 install_packages() {
   local missing=()
-  for p in "${PACKAGES[@]}"; do
+  for p in "${PACKAGES[@]}" "$@"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
   done
   [ ${#missing[@]} -eq 0 ] && return 0
