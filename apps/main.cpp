@@ -104,6 +104,12 @@ int main(int argc, char** argv) {
                    "commands, rig and robot description) and the ground truth into this "
                    "folder, for `coopmap replay` (layout: its README.md)")
       ->check(kOutputFolder);
+  cmd_run
+      ->add_option("--shared-map", run.shared_map_dir,
+                   "Keep the robots' shared map in this folder (shared_map.bin, saved before "
+                   "each post is acknowledged): a run on a folder that holds one goes on from "
+                   "it, and a killed run loses no acknowledged post")
+      ->check(CLI::NonexistentPath | CLI::ExistingDirectory);
   bool explore_flag = false, routes_flag = false;
   cmd_run->add_flag("--explore", explore_flag,
                     "Autonomous missions instead of the routes: look at the home base, explore "
@@ -771,6 +777,7 @@ int main(int argc, char** argv) {
       if (events)
         run.event_observer = [](const std::string& robot, double t, const std::string& event) {
           std::printf("%.1f s %s: %s\n", t, robot.c_str(), event.c_str());
+          std::fflush(stdout);  // as it happens, also into a pipe
         };
       run.share_maps = true;
       const std::string given = stage(out_folder, run_out, "coopmap run");

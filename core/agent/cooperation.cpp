@@ -108,6 +108,7 @@ HomeBaseCooperation::HomeBaseCooperation(std::string robot, const HomeBase& nomi
       config_(config) {
   config_.validate();
   if (!shared_) throw std::invalid_argument("HomeBaseCooperation: no shared map service");
+  next_post_ = shared_->lastPost(robot_) + 1;
 }
 
 HomeBaseCooperation::SharedView::SharedView(const SharedMapService& shared,

@@ -57,6 +57,12 @@ LocalSharedMap::LocalSharedMap(const MapLimits& limits, const OccupancyConfig& c
   if (folder.empty()) return;
   std::filesystem::create_directories(folder);
   file_ = folder + "/shared_map.bin";
+  // A service killed while saving left its temporary file: the snapshot it was replacing is
+  // the last acknowledged state (one service per folder).
+  const std::string partial = "shared_map.bin.tmp.";
+  for (const auto& entry : std::filesystem::directory_iterator(folder))
+    if (entry.path().filename().string().rfind(partial, 0) == 0)
+      std::filesystem::remove(entry.path());
   if (std::filesystem::exists(file_)) load(file_);
 }
 
@@ -189,6 +195,12 @@ PostResult LocalSharedMap::post(const MapPost& post) {
   result.status = PostStatus::kAccepted;
   result.version = version_;
   return result;
+}
+
+uint64_t LocalSharedMap::lastPost(const std::string& robot) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const auto last = last_post_.find(robot);
+  return last == last_post_.end() ? 0 : last->second;
 }
 
 SharedMapSnapshot LocalSharedMap::snapshot() const {

@@ -70,6 +70,10 @@ class SharedMapService {
   virtual PostResult post(const MapPost& post) = 0;
   // The current map.
   virtual SharedMapSnapshot snapshot() const = 0;
+  // The id of `robot`'s last post applied (0: none). A robot numbers its posts after it, so
+  // that a robot joining a map kept from earlier runs (or restarted) is not taken for a
+  // duplicate of itself.
+  virtual uint64_t lastPost(const std::string& robot) const = 0;
   // The grid geometry and update rule every robot must use to import the map.
   virtual const MapLimits& limits() const = 0;
   virtual const OccupancyConfig& config() const = 0;
@@ -83,7 +87,8 @@ class SharedMapService {
 inline constexpr double kPublishedSigmaScale = 0.5;
 
 // The in-process service; thread-safe. With a non-empty `folder` the map is restored from
-// `folder/shared_map.bin` if present and saved there (temp file + rename) on every post.
+// `folder/shared_map.bin` if present and saved there (temp file + rename) on every post,
+// before the post is acknowledged; one service per folder.
 // `published`: the published grid's update rule (unset: `config`, the one grid twice).
 class LocalSharedMap final : public SharedMapService {
  public:
@@ -95,6 +100,7 @@ class LocalSharedMap final : public SharedMapService {
 
   PostResult post(const MapPost& post) override;
   SharedMapSnapshot snapshot() const override;
+  uint64_t lastPost(const std::string& robot) const override;
   const MapLimits& limits() const override { return grid_.limits(); }
   const OccupancyConfig& config() const override { return grid_.config(); }
   // The current shared grid (a copy): what the robots import.

@@ -185,7 +185,18 @@ RunResult runWorld(const RunOptions& opt) {
   OccupancyConfig published;
   published.sigma_scale = opt.published_band;
   std::optional<LocalSharedMap> live;
-  if (result.cooperative) live.emplace(limits, OccupancyConfig{}, "", published);
+  if (!opt.shared_map_dir.empty() && !result.cooperative)
+    throw ConfigError("--shared-map: the robots of this run share no map as they go (" +
+                      std::string(has_home_base ? "driven by the truth, or one sortie each"
+                                                : "the world has no home base") +
+                      ")");
+  if (result.cooperative) {
+    try {
+      live.emplace(limits, OccupancyConfig{}, opt.shared_map_dir, published);
+    } catch (const std::runtime_error& e) {
+      throw ConfigError("--shared-map: " + std::string(e.what()));
+    }
+  }
   LocalTeamChannel team;
 
   sim::Simulator sim(world, opt.seed);

@@ -34,6 +34,10 @@ struct RunOptions {
   // commands, description, the agent's setup and settings) and the ground truth are recorded
   // there (robots/replay/recording.h), so that `coopmap replay` runs the same agents again.
   std::string record_dir;
+  // Empty: the shared map lives in memory for the run; else the shared map service keeps it
+  // in this folder (shared_map.bin, saved before each post is acknowledged), and a run on a
+  // folder that holds one goes on from it.
+  std::string shared_map_dir;
   uint64_t seed = 1;
   double duration = 600.0;              // s of simulated time at most
   std::optional<int> robots;            // use only the first N robots of the world
@@ -48,8 +52,8 @@ struct RunOptions {
   // base) and naively (every radial map at its odometry pose, placed by the robot's first
   // look); RunResult::shared_map. (Robots that drive themselves share as they go.)
   bool share_maps = false;
-  // Autonomous missions (AgentSetup::kExplore) instead of the routes; unset: the world's
-  // `mission` mode.
+  // Autonomous missions (AgentSetup::kExplore) instead of the routes; unset: explore when no
+  // robot of the world has a route.
   std::optional<bool> explore;
   // The agents' settings: coopmap's defaults and each robot model's odometry calibration
   // (calibrated_distance_scale), then this.
