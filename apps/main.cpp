@@ -15,6 +15,7 @@
 #include <CLI/App.hpp>
 #include <CLI/Config.hpp>
 #include <CLI/Formatter.hpp>
+#include <opencv2/core/utils/logger.hpp>
 
 #include "core/agent/agent_settings.h"
 #include "core/io/atomic_file.h"
@@ -62,6 +63,8 @@ const CLI::Validator kOutputFolder(
 }  // namespace
 
 int main(int argc, char** argv) {
+  // coopmap reports what went wrong itself, naming the file: no library log lines before it.
+  cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_SILENT);
   CLI::App app{
       "coopmap: a simulation-first testbed for cooperative stereo-vision mapping with B-14 "
       "robots (Little, Jennings, Murray)."};

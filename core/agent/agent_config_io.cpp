@@ -97,6 +97,8 @@ AgentConfig readAgentConfig(const YamlField& f) {
   s.map.resolution = map["resolution"].asDouble(0.001, 10.0, "metres per cell in [0.001, 10]");
   s.map.width = map["width"].asInt(1, 100000);
   s.map.height = map["height"].asInt(1, 100000);
+  if (const std::string problem = mapSizeProblem(s.map.width, s.map.height); !problem.empty())
+    map["height"].fail(problem);
   s.home_base = HomeBaseDesign{};  // coopmap's standard home base, unless said otherwise
   if (f.has("home_base")) {
     const YamlField hb = f["home_base"];

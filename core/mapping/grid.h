@@ -1,8 +1,10 @@
 // Grid geometry shared by occupancy grids, ground truth and metrics.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -36,6 +38,21 @@ struct MapLimits {
   size_t index(int ix, int iy) const { return static_cast<size_t>(iy) * width + ix; }
   size_t size() const { return static_cast<size_t>(width) * height; }
 };
+
+// The largest grid coopmap makes: 8192 x 8192 cells (409.6 m square at 5 cm; about 200 MB
+// per occupancy grid). Every size read from input (a world's floor, a recording's or an agent
+// configuration's map, a map image, a log's extent at a resolution) is checked against it
+// before anything is allocated.
+inline constexpr double kMaxMapCells = 8192.0 * 8192.0;
+
+// "" when a grid of `width` x `height` cells is within kMaxMapCells, else what was found and
+// what is allowed (for an error naming the field). Doubles, so that no product overflows.
+inline std::string mapSizeProblem(double width, double height) {
+  if (width >= 1.0 && height >= 1.0 && width * height <= kMaxMapCells) return "";
+  return "a grid of at most 8192 x 8192 = 67108864 cells, got " +
+         std::to_string(static_cast<long long>(std::min(width, 1e15))) + " x " +
+         std::to_string(static_cast<long long>(std::min(height, 1e15))) + " cells";
+}
 
 // A flat row-major grid of small values over MapLimits.
 template <typename T>

@@ -5,6 +5,7 @@
 
 #include <opencv2/imgcodecs.hpp>
 
+#include "core/io/image_file.h"
 #include "core/io/yaml_reader.h"
 
 namespace coopmap {
@@ -28,9 +29,12 @@ RosMap loadRosMap(const std::string& yaml_path) {
     root["free_thresh"].fail("a probability below occupied_thresh");
   if (std::abs(origin.z()) > 1e-9)
     root["origin"].fail("[x, y, 0] (rotated maps are not supported)");
-  const cv::Mat img = cv::imread(map.image, cv::IMREAD_GRAYSCALE);
-  if (img.empty())
-    throw ConfigError(map.image + ": cannot read the map image named in " + yaml_path);
+  cv::Mat img;
+  try {
+    img = readImage(map.image, cv::IMREAD_GRAYSCALE, kMaxMapCells);
+  } catch (const ConfigError& e) {
+    throw ConfigError(std::string(e.what()) + " (the map image named in " + yaml_path + ")");
+  }
 
   MapLimits lim;
   lim.resolution = resolution;

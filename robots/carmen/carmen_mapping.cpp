@@ -14,12 +14,6 @@
 #include "robots/carmen/carmen_log_robot.h"
 
 namespace coopmap {
-namespace {
-
-constexpr double kMaxCells = 64e6;  // beyond this the map would not fit comfortably in memory
-
-}  // namespace
-
 void CarmenOptions::validate() const {
   auto bad = [](const std::string& o, const std::string& e, double v) {
     throw std::invalid_argument("carmen: option '" + o + "': expected " + e + ", got " +
@@ -78,8 +72,9 @@ CarmenResult runCarmen(const CarmenOptions& o) {
   const double res = o.resolution;
   lo = ((lo.array() - o.margin) / res).floor() * res;
   hi = ((hi.array() + o.margin) / res).ceil() * res;
-  const double cells = ((hi - lo) / res).prod();
-  if (cells > kMaxCells)
+  const Eigen::Vector2d extent = (hi - lo) / res;
+  const double cells = extent.prod();
+  if (!mapSizeProblem(std::round(extent.x()), std::round(extent.y())).empty())
     throw std::runtime_error(o.log + ": the map would span " + std::to_string(hi.x() - lo.x()) +
                              " x " + std::to_string(hi.y() - lo.y()) + " m (" +
                              std::to_string(static_cast<long long>(cells)) +

@@ -13,6 +13,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "core/io/atomic_file.h"
+#include "core/io/image_file.h"
 #include "core/io/json_writer.h"
 #include "core/io/yaml_reader.h"
 
@@ -219,8 +220,8 @@ RobotDescription parseRobotDescription(const std::string& path) {
   rig.allowOnly({"width", "height", "fx", "fy", "cx", "cy", "horizontal_offset", "vertical_offset",
                  "mount_position"});
   CameraIntrinsics& k = d.rig.intrinsics;
-  k.width = rig["width"].asInt(1, 100000);
-  k.height = rig["height"].asInt(1, 100000);
+  k.width = rig["width"].asInt(16, 4096);  // as robot model files (robots/robot_model.h)
+  k.height = rig["height"].asInt(16, 4096);
   k.fx = rig["fx"].asDouble(1e-6, big, "a positive focal length in pixels");
   k.fy = rig["fy"].asDouble(1e-6, big, "a positive focal length in pixels");
   k.cx = rig["cx"].asDouble(-big, big, "a principal point in pixels");
@@ -341,6 +342,8 @@ RecordingInfo readRecordingInfo(const std::string& dir_in) {
   info.map.origin = map["origin"].asVector2();
   info.map.width = map["width"].asInt(1, 100000);
   info.map.height = map["height"].asInt(1, 100000);
+  if (const std::string problem = mapSizeProblem(info.map.width, info.map.height); !problem.empty())
+    map["height"].fail(problem);
   const std::vector<YamlField> robots = root["robots"].elements();
   if (robots.empty()) root["robots"].fail("a list of at least one robot");
   for (const YamlField& r : robots) {
@@ -414,12 +417,9 @@ TrinocularFrame readRecordedFrame(const RobotRecording& rec, size_t i) {
     const std::string where = ": frame " + std::to_string(f.index);
     const std::string bytes = readExisting(path, where);
     static constexpr char kPngMagic[] = "\x89PNG\r\n\x1a\n";
-    cv::Mat img;
-    if (bytes.compare(0, 8, kPngMagic, 8) == 0)
-      img = cv::imdecode(
-          cv::Mat(1, static_cast<int>(bytes.size()), CV_8U, const_cast<char*>(bytes.data())),
-          cv::IMREAD_UNCHANGED);
-    if (img.empty()) throw std::runtime_error(path + where + ": cannot decode PNG");
+    if (bytes.compare(0, 8, kPngMagic, 8) != 0)
+      throw ConfigError(path + where + ": expected a PNG image");
+    const cv::Mat img = decodeImage(bytes, cv::IMREAD_UNCHANGED, path + where, kMaxMapCells);
     if (img.type() != CV_8UC1 || img.cols != k.width || img.rows != k.height)
       throw std::runtime_error(
           path + where + ": expected an 8-bit grey " + std::to_string(k.width) + "x" +
@@ -443,10 +443,7 @@ std::string encodeGridPng(const GridU8& grid) {
 }
 
 GridU8 decodeGridPng(const std::string& bytes, const MapLimits& limits, const std::string& path) {
-  const cv::Mat img = cv::imdecode(
-      cv::Mat(1, static_cast<int>(bytes.size()), CV_8U, const_cast<char*>(bytes.data())),
-      cv::IMREAD_UNCHANGED);
-  if (img.empty()) throw std::runtime_error(path + ": cannot decode PNG");
+  const cv::Mat img = decodeImage(bytes, cv::IMREAD_UNCHANGED, path, kMaxMapCells);
   if (img.type() != CV_8UC1 || img.cols != limits.width || img.rows != limits.height)
     throw std::runtime_error(path + ": expected an 8-bit grey " + std::to_string(limits.width) +
                              "x" + std::to_string(limits.height) +

@@ -6,6 +6,8 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "core/io/atomic_file.h"
+#include "core/io/image_file.h"
+#include "core/mapping/grid.h"
 #include "robots/robot_model.h"
 #include "sim/runner/world_run.h"
 #include "sim/world/world.h"
@@ -16,9 +18,7 @@ namespace {
 
 cv::Mat readGrey(const std::string& path, const std::string& what) {
   if (path.empty()) throw std::invalid_argument("--" + what + ": expected an image file");
-  cv::Mat m = cv::imread(path, cv::IMREAD_GRAYSCALE);
-  if (m.empty()) throw std::runtime_error(path + ": cannot read the " + what + " image");
-  return m;
+  return readImage(path, cv::IMREAD_GRAYSCALE, kMaxMapCells);
 }
 
 void writePng(const std::string& path, const cv::Mat& img) {
@@ -101,8 +101,8 @@ StereoEvalResult runStereoEval(const StereoEvalOptions& o) {
     const cv::Mat ver = readGrey(o.vertical, "vertical");
     if (ref.size() != hor.size() || ref.size() != ver.size())
       throw std::invalid_argument("the reference, horizontal and vertical images differ in size");
-    cv::Mat truth_raw = cv::imread(o.truth, cv::IMREAD_UNCHANGED);
-    if (truth_raw.empty()) throw std::runtime_error(o.truth + ": cannot read the truth image");
+    if (o.truth.empty()) throw std::invalid_argument("--truth: expected an image file");
+    cv::Mat truth_raw = readImage(o.truth, cv::IMREAD_UNCHANGED, kMaxMapCells);
     if (truth_raw.size() != ref.size() || truth_raw.channels() != 1)
       throw std::invalid_argument(o.truth +
                                   ": expected a one-channel image the size of the reference");

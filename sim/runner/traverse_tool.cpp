@@ -11,6 +11,7 @@
 #include "core/correction/home_return.h"
 #include "core/correction/traverse_log.h"
 #include "core/io/atomic_file.h"
+#include "core/io/yaml_reader.h"
 #include "core/localization/scan_alignment.h"
 #include "core/mapping/map_io.h"
 
@@ -109,6 +110,16 @@ TraverseSummary runTraverse(const TraverseOptions& o) {
   s.used = used.size();
   s.duration_s = log.entries[last].scan.stamp - log.entries[o.first].scan.stamp;
   const Eigen::Vector2d margin(range + 0.5, range + 0.5);
+  const Eigen::Vector2d cells = (hi - lo + 2.0 * margin) / o.resolution;
+  if (const std::string problem = mapSizeProblem(std::ceil(cells.x()), std::ceil(cells.y()));
+      !problem.empty()) {
+    char resolution[32];
+    std::snprintf(resolution, sizeof resolution, "%g", o.resolution);
+    throw ConfigError("--resolution: the map of " + o.log_file + " at " + resolution +
+                      " m per cell would be larger than " +
+                      problem.substr(0, problem.find(", got")) + " (" +
+                      problem.substr(problem.find("got ") + 4) + "): use a coarser --resolution");
+  }
   const OccupancyGrid grid =
       localMap(log, used, MapLimits::covering(lo - margin, hi + margin, o.resolution));
   std::filesystem::create_directories(o.out_dir);

@@ -281,6 +281,16 @@ World parseWorld(const std::string& text, const std::string& file) {
     w.control_rate =
         optionalDouble(*sim, "control_rate", w.control_rate, 1.0, 200.0, "a rate in [1, 200] Hz");
   }
+  // The maps cover the floor at map_resolution: their size is checked before any is made.
+  {
+    const Eigen::Vector2d cells = (w.floor_max - w.floor_min) / w.map_resolution;
+    const std::string problem = mapSizeProblem(std::ceil(cells.x()), std::ceil(cells.y()));
+    char resolution[32];
+    std::snprintf(resolution, sizeof resolution, "%g", w.map_resolution);
+    if (!problem.empty())
+      floor.failMessage(std::string("the floor at map_resolution ") + resolution + " m: expected " +
+                        problem);
+  }
 
   for (const YamlField& f : root["walls"].elements()) {
     f.allowOnly({"from", "to", "thickness", "height", "texture"});
@@ -328,6 +338,27 @@ World parseWorld(const std::string& text, const std::string& file) {
           last = at;
           d.schedule.push_back({at, e["open"].asBool()});
         }
+      }
+      // The door fills its doorway, no more: its leaf may not reach into a wall's run (the
+      // walls' square end caps, half a thickness past their ends, may touch it).
+      const Eigen::Vector2d along(std::cos(d.yaw), std::sin(d.yaw));
+      for (const WallSpec& wall : w.walls) {
+        const Eigen::Vector2d run = wall.to - wall.from, u = run.normalized();
+        double deepest = 0.0;
+        for (double t = -0.5 * d.width; t <= 0.5 * d.width; t += 0.005) {
+          const Eigen::Vector2d q = d.center + t * along - wall.from;
+          const double s = q.dot(u);
+          if (std::abs(q.x() * u.y() - q.y() * u.x()) < 0.5 * wall.thickness && s > 0.0 &&
+              s < run.norm())
+            deepest = std::max(deepest, std::min(s, run.norm() - s));
+        }
+        if (deepest > 0.01)
+          f["width"].failMessage(
+              "a door no wider than its doorway: " + formatMetres(d.width) + " wide at (" +
+              formatMetres(d.center.x()) + ", " + formatMetres(d.center.y()) + "), it reaches " +
+              formatMetres(deepest) + " into the wall from (" + formatMetres(wall.from.x()) + ", " +
+              formatMetres(wall.from.y()) + ") to (" + formatMetres(wall.to.x()) + ", " +
+              formatMetres(wall.to.y()) + ")");
       }
       w.doors.push_back(d);
     }

@@ -45,7 +45,7 @@ execute_process(COMMAND "${COOPMAP}" replay "${WORK_DIR}/rec" --out "${WORK_DIR}
 if(rc EQUAL 0)
   message(FATAL_ERROR "coopmap replay accepted a corrupt image:\n${out}${err}")
 endif()
-if(NOT err MATCHES "rec/jose/images/000003_horizontal\\.png: frame 3: cannot decode PNG")
+if(NOT rc EQUAL 2 OR NOT err MATCHES "rec/jose/images/000003_horizontal\\.png: frame 3: expected a PNG image")
   message(FATAL_ERROR "unclear error message:\n${err}")
 endif()
 if(EXISTS "${WORK_DIR}/bad")

@@ -134,6 +134,29 @@ TEST(WorldLoaderTest, StartsThatOverlapAreRefused) {
   EXPECT_EQ(errorOf(apart), "(no error)");
 }
 
+// A door fills its doorway, no more: a leaf reaching into the walls beside the gap is refused.
+TEST(WorldLoaderTest, DoorsWiderThanTheirDoorwayAreRefused) {
+  // A wall along y = 0 from x = 0 to 5 with a gap from 2 to 3 for a door.
+  const std::string walls =
+      "  - {from: [0, 0], to: [2, 0], thickness: 0.1, texture: a}\n"
+      "  - {from: [3, 0], to: [5, 0], thickness: 0.1, texture: a}\n"
+      "doors:\n"
+      "  - {center: [2.5, 0], width: ";
+  const std::string fits = replaceLine(minimal(), 6, walls + "1.0}");
+  EXPECT_EQ(errorOf(fits), "(no error)");
+  const std::string wide = replaceLine(minimal(), 6, walls + "1.4}");
+  EXPECT_EQ(errorOf(wide),
+            "w.yaml:9:31: doors[0].width: a door no wider than its doorway: 1.40 m wide at "
+            "(2.50 m, 0.00 m), it reaches 0.20 m into the wall from (0.00 m, 0.00 m) to (2.00 "
+            "m, 0.00 m)");
+  // Across a wall (a door in the wrong place) is refused too.
+  const std::string across = replaceLine(
+      minimal(), 6, walls + "1.0, yaw_deg: 90}\n  - {center: [1, 0], width: 0.8, yaw_deg: 90}");
+  EXPECT_NE(errorOf(across).find("doors[1].width: a door no wider than its doorway"),
+            std::string::npos)
+      << errorOf(across);
+}
+
 TEST(WorldLoaderTest, WaypointOffTheFloor) {
   const std::string e = errorOf(replaceLine(minimal(), 16, "    route: [[3, 3], [9, 3]]"));
   EXPECT_EQ(e, "w.yaml:16:21: robots[0].route[1]: expected a waypoint on the floor, got a list");
