@@ -1,21 +1,15 @@
 # Damaged images (a map's, a recorded frame) are reported by coopmap alone: exit 2 and one
 # line on stderr, "coopmap: <file>: <what is wrong>", no libpng or OpenCV text before it.
+include("${CMAKE_CURRENT_LIST_DIR}/helpers.cmake")
 file(REMOVE_RECURSE "${WORK_DIR}")
 file(MAKE_DIRECTORY "${WORK_DIR}")
 
+# One line on stderr, coopmap's own.
 function(expect_one_line what pattern)
-  execute_process(COMMAND "${COOPMAP}" ${ARGN} RESULT_VARIABLE rc ERROR_VARIABLE err)
-  if(NOT rc EQUAL 2 OR NOT err MATCHES "^coopmap: ${pattern}\n$")
-    message(FATAL_ERROR "${what}: expected exit 2 and one line of coopmap's (rc ${rc}):\n${err}")
-  endif()
+  expect_exit2("${what}" "^coopmap: ${pattern}\n$" ${ARGN})
 endfunction()
 
-execute_process(COMMAND "${COOPMAP}" run "${SOURCE_DIR}/worlds/lab.yaml" --duration 1 --quiet
-                        --record "${WORK_DIR}/rec" --out "${WORK_DIR}/live"
-                RESULT_VARIABLE rc ERROR_VARIABLE err)
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "test setup: the recording run failed:\n${err}")
-endif()
+record_lab("${WORK_DIR}/rec" "${WORK_DIR}/live")
 
 set(yaml "resolution: 0.05\norigin: [0, 0, 0]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n")
 # A PNG cut short, a PNG with a flipped byte, a PGM with too few pixels, a missing image.

@@ -2,14 +2,12 @@
 # before anything is allocated: a 4 km floor, a 100000 x 100000 map in a recording, a 20000 x
 # 20000 map image, a traverse log mapped at 1e-9 m per cell. Each is refused with exit 2,
 # naming the file and field, and nothing is written.
+include("${CMAKE_CURRENT_LIST_DIR}/helpers.cmake")
 file(REMOVE_RECURSE "${WORK_DIR}")
 file(MAKE_DIRECTORY "${WORK_DIR}")
 
 function(expect_refused what pattern)
-  execute_process(COMMAND "${COOPMAP}" ${ARGN} RESULT_VARIABLE rc ERROR_VARIABLE err)
-  if(NOT rc EQUAL 2 OR NOT err MATCHES "${pattern}")
-    message(FATAL_ERROR "${what} was not refused clearly (rc ${rc}):\n${err}")
-  endif()
+  expect_exit2("${what}" "${pattern}" ${ARGN})
   if(EXISTS "${WORK_DIR}/out")
     message(FATAL_ERROR "${what}: outputs were written")
   endif()
@@ -29,12 +27,7 @@ expect_refused("a 4 km floor"
 file(REMOVE "${world}")
 
 # A recording whose map is 100000 x 100000 cells.
-execute_process(COMMAND "${COOPMAP}" run "${SOURCE_DIR}/worlds/lab.yaml" --duration 1 --quiet
-                        --record "${WORK_DIR}/rec" --out "${WORK_DIR}/live"
-                RESULT_VARIABLE rc ERROR_VARIABLE err)
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "test setup: the recording run failed:\n${err}")
-endif()
+record_lab("${WORK_DIR}/rec" "${WORK_DIR}/live")
 file(READ "${WORK_DIR}/rec/dataset.yaml" dataset)
 string(REGEX REPLACE "width: [0-9]+" "width: 100000" dataset "${dataset}")
 string(REGEX REPLACE "height: [0-9]+" "height: 100000" dataset "${dataset}")
