@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -111,10 +112,13 @@ struct Renderer::Impl {
   // Draws vertices from client memory (base != nullptr) or the bound buffer (base == 0).
   static void draw(const Vertex* base, size_t count) {
     if (count == 0) return;
-    const char* p = reinterpret_cast<const char*>(base);
-    glVertexPointer(3, GL_FLOAT, sizeof(Vertex), p + offsetof(Vertex, x));
-    glTexCoordPointer(2, GL_FLOAT, sizeof(Vertex), p + offsetof(Vertex, u));
-    glColorPointer(4, GL_UNSIGNED_BYTE, sizeof(Vertex), p + offsetof(Vertex, r));
+    // GL takes a bound buffer's offsets as pointers: computed as integers, since adding an
+    // offset to a null pointer is undefined behaviour.
+    const uintptr_t p = reinterpret_cast<uintptr_t>(base);
+    auto at = [p](size_t offset) { return reinterpret_cast<const void*>(p + offset); };
+    glVertexPointer(3, GL_FLOAT, sizeof(Vertex), at(offsetof(Vertex, x)));
+    glTexCoordPointer(2, GL_FLOAT, sizeof(Vertex), at(offsetof(Vertex, u)));
+    glColorPointer(4, GL_UNSIGNED_BYTE, sizeof(Vertex), at(offsetof(Vertex, r)));
     glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(count));
   }
 };
