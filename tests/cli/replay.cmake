@@ -3,6 +3,7 @@
 # placed by its look at the home base, sorties ended at home: corrected, posted, the shared
 # map imported); a broken recording gets a message naming
 # the file and frame, a non-zero exit code, and nothing written.
+include("${CMAKE_CURRENT_LIST_DIR}/helpers.cmake")
 file(REMOVE_RECURSE "${WORK_DIR}")
 file(MAKE_DIRECTORY "${WORK_DIR}")
 execute_process(COMMAND "${COOPMAP}" run "${SOURCE_DIR}/worlds/lab.yaml" --out "${WORK_DIR}/live"
@@ -40,14 +41,8 @@ endforeach()
 
 # A corrupt image.
 file(WRITE "${WORK_DIR}/rec/jose/images/000003_horizontal.png" "not a png")
-execute_process(COMMAND "${COOPMAP}" replay "${WORK_DIR}/rec" --out "${WORK_DIR}/bad"
-                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-if(rc EQUAL 0)
-  message(FATAL_ERROR "coopmap replay accepted a corrupt image:\n${out}${err}")
-endif()
-if(NOT rc EQUAL 2 OR NOT err MATCHES "rec/jose/images/000003_horizontal\\.png: frame 3: expected a PNG image")
-  message(FATAL_ERROR "unclear error message:\n${err}")
-endif()
+expect_exit2("a corrupt image" "rec/jose/images/000003_horizontal\\.png: frame 3: expected a PNG image"
+             replay "${WORK_DIR}/rec" --out "${WORK_DIR}/bad")
 if(EXISTS "${WORK_DIR}/bad")
   message(FATAL_ERROR "coopmap replay wrote outputs for a corrupt recording")
 endif()
