@@ -174,9 +174,9 @@ HomeReturn localizeFromLog(const TraverseLog& log, const HomeBase& home, double 
   // 1. The paper's fix. The whole turn: where is the home base, roughly? Then only the
   // scans facing it (a few seconds of turning: little drift among them), corners refitted.
   const OccupancyGrid whole = localMap(log, turn, limits);
-  const HomeBaseFix rough =
-      findHomeBase(CornerDetector(classifyCells(whole), corners), home, at_turn, center,
-                   config.local_radius, config.max_separation_error);
+  const CornerDetector whole_detector(classifyCells(whole), corners);
+  const HomeBaseFix rough = findHomeBase(whole_detector, home, at_turn, center, config.local_radius,
+                                         config.max_separation_error);
   HomeBaseFix fix = rough;
   auto plausible = [&](const Pose2& correction) {
     return std::abs(correction.theta) <= config.max_correction_rad &&
@@ -205,8 +205,9 @@ HomeReturn localizeFromLog(const TraverseLog& log, const HomeBase& home, double 
   }
 
   // 2. Better: align the scans facing the home base to the reference map of the start.
-  // Without a corner fix, the robot is at least back at the home base: every heading with
-  // the turn's centre near the start position is scored, and the best few are aligned.
+  // Without a corner fix, the robot is at least back at the home base: one corner seen places
+  // it, or else every heading with the turn's centre near the start position is scored, and
+  // the best few are aligned.
   if (reference) {
     const ScanAligner aligner(*reference, config.alignment);
     // The same reference with a tighter robust scale, for the second pass of each alignment:
@@ -215,17 +216,15 @@ HomeReturn localizeFromLog(const TraverseLog& log, const HomeBase& home, double 
     AlignmentConfig tight_config = config.alignment;
     tight_config.robust_scale = std::max(1.0, 0.5 * tight_config.robust_scale);
     const ScanAligner tight(*reference, tight_config);
-    std::vector<Pose2> guesses;
-    if (fix.status == HomeBaseStatus::kOk) {
-      guesses.push_back(fix.correction);
-    } else {
-      // The robot believes it is home: headings in 2 degree steps and positions in 10 cm
-      // steps within search_radius of the start, scoring a subsample of the points; the
-      // best position per heading, then the best headings at least 10 degrees apart.
+    // The robot believes it is home: headings in 2 degree steps and positions in 10 cm
+    // steps within search_radius of the start, scoring a subsample of the points; the
+    // best position per heading, then the best headings at least 10 degrees apart.
+    const Pose2 start = log.entries.front().scan.odometry;
+    auto searchedGuesses = [&] {
+      std::vector<Pose2> guesses;
       std::vector<const RadialMap*> all;
       for (size_t i : turn) all.push_back(&log.entries[i].scan);
       const std::vector<Eigen::Vector2d> pts = aligner.obstaclePoints(all, 8);
-      const Pose2 start = log.entries.front().scan.odometry;
       const int steps = static_cast<int>(std::floor(config.search_radius / 0.1));
       // A point counts when within what the 10 cm, 2 degree grid can be off at 3 m.
       const double sweep_cells = std::max(config.alignment.robust_scale, 0.12 / config.resolution);
@@ -254,50 +253,76 @@ HomeReturn localizeFromLog(const TraverseLog& log, const HomeBase& home, double 
         if (distinct) guesses.push_back(g);
         if (guesses.size() >= 5) break;
       }
-    }
-    // The two corners look alike: moved by their spacing, one L lies on the other, and an
-    // alignment started there converges there (fixes 1.4 m off the truth were seen). Each
-    // guess is also tried moved by the spacing either way; the score over the whole turn
-    // (both L's and the room around them) tells the right one.
-    const Eigen::Vector2d spacing = home.second.position - home.first.position;
-    const size_t own_guesses = guesses.size();
-    for (size_t k = 0; k < own_guesses; ++k)
-      for (double side : {-1.0, 1.0})
-        guesses.push_back(Pose2(side * spacing.x(), side * spacing.y(), 0.0) * guesses[k]);
+      return guesses;
+    };
+    // One L of the home base seen (the other hidden, or blurred by the turn): each corner
+    // found in the turn's map placed on the first designed corner (the spacing below tries the
+    // second), where it puts the robot within search_radius of the start. The search over
+    // every heading and position stands in when no such placement aligns.
+    auto cornerGuesses = [&] {
+      std::vector<Pose2> guesses;
+      for (const Corner& c : whole_detector.findAll().corners) {
+        const Pose2 rotate(0.0, 0.0, wrapAngle(home.first.heading - c.heading));
+        const Eigen::Vector2d t = home.first.position - rotate * c.position;
+        const Pose2 g(t.x(), t.y(), rotate.theta);
+        if (plausible(g) &&
+            ((g * at_turn).translation() - start.translation()).norm() <= config.search_radius)
+          guesses.push_back(g);
+      }
+      return guesses;
+    };
     std::vector<size_t> best_view;
     size_t best_entry = entry;
     double best_score = -1.0;
     std::vector<const RadialMap*> turn_scans;
     for (size_t i : turn) turn_scans.push_back(&log.entries[i].scan);
     const std::vector<Eigen::Vector2d> turn_points = aligner.obstaclePoints(turn_scans, 4);
-    for (const Pose2& guess : guesses) {
-      std::vector<size_t> view = facing;
-      size_t view_entry = entry;
-      if (fix.status != HomeBaseStatus::kOk) {
-        view = entriesFacing(log, turn, guess.inverse() * home_mid, config.facing_half_angle);
-        view_entry = view.empty() ? turn.back() : view[view.size() / 2];
+    auto alignGuesses = [&](std::vector<Pose2> guesses) {
+      // The two corners look alike: moved by their spacing, one L lies on the other, and an
+      // alignment started there converges there (fixes 1.4 m off the truth were seen). Each
+      // guess is also tried moved by the spacing either way; the score over the whole turn
+      // (both L's and the room around them) tells the right one.
+      const Eigen::Vector2d spacing = home.second.position - home.first.position;
+      const size_t own_guesses = guesses.size();
+      for (size_t k = 0; k < own_guesses; ++k)
+        for (double side : {-1.0, 1.0})
+          guesses.push_back(Pose2(side * spacing.x(), side * spacing.y(), 0.0) * guesses[k]);
+      for (const Pose2& guess : guesses) {
+        std::vector<size_t> view = facing;
+        size_t view_entry = entry;
+        if (fix.status != HomeBaseStatus::kOk) {
+          view = entriesFacing(log, turn, guess.inverse() * home_mid, config.facing_half_angle);
+          view_entry = view.empty() ? turn.back() : view[view.size() / 2];
+        }
+        std::vector<const RadialMap*> scans;
+        for (size_t i : view.size() >= 3 ? view : turn) scans.push_back(&log.entries[i].scan);
+        AlignmentResult a = aligner.align(scans, guess);
+        if (a.ok) {
+          const AlignmentResult second = tight.align(scans, a.correction);
+          if (second.ok) a = second;
+        }
+        if (a.ok && !plausible(a.correction)) {
+          a.ok = false;
+          a.message = "the alignment moved the robot farther than it can be off";
+        }
+        if (&guess == &guesses.front() && !out.alignment.ok) out.alignment = a;  // first reason
+        // Every guess is tried; the alignment that puts most of the whole turn's points on
+        // the reference's obstacles wins (a wrong heading can align its own view too).
+        const double sc = a.ok ? aligner.score(turn_points, a.correction) : -1.0;
+        if (a.ok && (!out.alignment.ok || sc > best_score)) {
+          out.alignment = a;
+          best_score = sc;
+          best_view = view;
+          best_entry = view_entry;
+        }
       }
-      std::vector<const RadialMap*> scans;
-      for (size_t i : view.size() >= 3 ? view : turn) scans.push_back(&log.entries[i].scan);
-      AlignmentResult a = aligner.align(scans, guess);
-      if (a.ok) {
-        const AlignmentResult second = tight.align(scans, a.correction);
-        if (second.ok) a = second;
-      }
-      if (a.ok && !plausible(a.correction)) {
-        a.ok = false;
-        a.message = "the alignment moved the robot farther than it can be off";
-      }
-      if (&guess == &guesses.front() && !out.alignment.ok) out.alignment = a;  // first reason
-      // Every guess is tried; the alignment that puts most of the whole turn's points on
-      // the reference's obstacles wins (a wrong heading can align its own view too).
-      const double sc = a.ok ? aligner.score(turn_points, a.correction) : -1.0;
-      if (a.ok && (!out.alignment.ok || sc > best_score)) {
-        out.alignment = a;
-        best_score = sc;
-        best_view = view;
-        best_entry = view_entry;
-      }
+    };
+    if (fix.status == HomeBaseStatus::kOk) {
+      alignGuesses({fix.correction});
+    } else {
+      const std::vector<Pose2> from_corners = cornerGuesses();
+      if (!from_corners.empty()) alignGuesses(from_corners);
+      if (!out.alignment.ok) alignGuesses(searchedGuesses());
     }
     if (out.alignment.ok) {
       facing = best_view;

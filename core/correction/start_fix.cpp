@@ -17,6 +17,9 @@ constexpr double kSearchReach = 0.20;
 constexpr double kModelReach = 0.08;
 constexpr double kModelInlier = 0.02;
 constexpr double kModelResolution = 0.01;
+// The search's alignments use every kSearchStride-th point of the turn: they only have to
+// bring a placement into the basin the fine alignment refines.
+constexpr int kSearchStride = 4;
 // A placement must put at least this many of the turn's points on each L, and on three of
 // the four arms at least kMinPointsPerArm (a wall near one L's place fits one arm, not two
 // at right angles; from afar one arm may be seen edge on).
@@ -181,22 +184,16 @@ StartFix localizeStart(const TraverseLog& log, const HomeBaseDesign& design,
   const HomeBase visible = design.visibleCorners();
 
   // Where is the home base? Each corner of the whole turn's map placed on either designed
-  // corner, aligned, and scored by the turn's points on the arms.
-  // Corners of the whole turn's map and of its arcs: the whole turn is blurred by the turn's
-  // drift, and an arc sees one side sharp.
-  std::vector<Corner> found;
-  for (const std::vector<size_t>& part : turnArcs(log, turn)) {
-    const OccupancyGrid map = localMap(log, part, limits);
-    const CornerSearch search = CornerDetector(classifyCells(map), corner_config).findAll();
-    for (const Corner& c : search.corners)
-      if ((c.position - center).norm() <= config.local_radius) found.push_back(c);
-  }
+  // corner, aligned, and scored by the turn's points on the arms; then, if none places it, the
+  // corners of the turn's arcs (the whole turn is blurred by the turn's drift, and an arc sees
+  // one side sharp).
   std::vector<const RadialMap*> turn_scans;
   for (size_t i : turn) turn_scans.push_back(&log.entries[i].scan);
   const OccupancyGrid outline = homeBaseModelGrid(design, kModelResolution);
   AlignmentConfig search = config.alignment;
   search.robust_scale = kSearchReach / kModelResolution;
   search.inlier_cells = kModelInlier / kModelResolution;
+  search.point_stride = kSearchStride;
   const ScanAligner searcher(outline, search);
   const std::vector<Eigen::Vector2d> points = searcher.obstaclePoints(turn_scans);
   const Eigen::Vector2d home_mid =
@@ -211,33 +208,42 @@ StartFix localizeStart(const TraverseLog& log, const HomeBaseDesign& design,
   int best_support = 0;
   Pose2 placed;
   std::vector<Pose2> tried;
-  for (const Corner& c : found) {
-    for (const Corner* designed : {&visible.first, &visible.second}) {
-      const Pose2 guess = placing(c, *designed);
-      // The same corner found in the whole turn and in an arc aligns the same way.
-      if (std::any_of(tried.begin(), tried.end(), [&](const Pose2& t) {
-            return (t.translation() - guess.translation()).norm() < 1e-4 &&
-                   std::abs(wrapAngle(t.theta - guess.theta)) < 1e-4;
-          }))
-        continue;
-      tried.push_back(guess);
-      // The alignment pulls only points within the search's reach of the arms: a placement
-      // without a view of the home base there cannot align into one.
-      if (!armSupport(arm_faces, points, guess, kSearchReach).enough()) continue;
-      const AlignmentResult a = searcher.align(turn_scans, guess);
-      if (!a.ok) continue;
-      const Eigen::Vector2d from_home = (a.correction * at_turn).translation() - home_mid;
-      if (from_home.normalized().dot(open_side) < std::cos(kMaxBearingRad)) continue;
-      const ArmSupport on = armSupport(arm_faces, points, a.correction, kModelInlier);
-      const int support = on.enough() ? on.total() : 0;
-      if (support > best_support) {
-        best_support = support;
-        placed = a.correction;
+  size_t found = 0;
+  for (const std::vector<size_t>& part : turnArcs(log, turn)) {
+    // The arcs only when the whole turn's corners place nothing.
+    if (best_support > 0) break;
+    const OccupancyGrid map = localMap(log, part, limits);
+    const CornerSearch corners = CornerDetector(classifyCells(map), corner_config).findAll();
+    for (const Corner& c : corners.corners) {
+      if ((c.position - center).norm() > config.local_radius) continue;
+      ++found;
+      for (const Corner* designed : {&visible.first, &visible.second}) {
+        const Pose2 guess = placing(c, *designed);
+        // The same corner found in the whole turn and in an arc aligns the same way.
+        if (std::any_of(tried.begin(), tried.end(), [&](const Pose2& t) {
+              return (t.translation() - guess.translation()).norm() < 1e-4 &&
+                     std::abs(wrapAngle(t.theta - guess.theta)) < 1e-4;
+            }))
+          continue;
+        tried.push_back(guess);
+        // The alignment pulls only points within the search's reach of the arms: a placement
+        // without a view of the home base there cannot align into one.
+        if (!armSupport(arm_faces, points, guess, kSearchReach).enough()) continue;
+        const AlignmentResult a = searcher.align(turn_scans, guess);
+        if (!a.ok) continue;
+        const Eigen::Vector2d from_home = (a.correction * at_turn).translation() - home_mid;
+        if (from_home.normalized().dot(open_side) < std::cos(kMaxBearingRad)) continue;
+        const ArmSupport on = armSupport(arm_faces, points, a.correction, kModelInlier);
+        const int support = on.enough() ? on.total() : 0;
+        if (support > best_support) {
+          best_support = support;
+          placed = a.correction;
+        }
       }
     }
   }
   if (best_support == 0) {
-    out.method = std::string(toString(out.status)) + " (" + std::to_string(found.size()) +
+    out.method = std::string(toString(out.status)) + " (" + std::to_string(found) +
                  " corners tried: none places both L's on the turn's points, the robot in front)";
     return out;
   }

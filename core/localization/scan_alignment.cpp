@@ -71,6 +71,7 @@ void AlignmentConfig::validate() const {
   check("min_inlier_share", min_inlier_share);
   check("min_points", min_points);
   check("max_iterations", max_iterations);
+  check("point_stride", point_stride);
 }
 
 ScanAligner::ScanAligner(const OccupancyGrid& reference, const AlignmentConfig& config)
@@ -130,9 +131,11 @@ std::vector<Eigen::Vector2d> ScanAligner::points(const std::vector<const RadialM
   // AlignmentConfig::seen_points_only).
   const MapLimits& lim = reference_.limits();
   std::vector<Eigen::Vector2d> out;
+  int hit = 0;
   for (const RadialMap* scan : scans)
     for (const RadialReading& r : scan->readings) {
       if (r.kind != RadialKind::kHit || r.range > config_.max_range) continue;
+      if (hit++ % config_.point_stride != 0) continue;
       const Eigen::Vector2d in_robot =
           scan->sensor_origin + r.range * Eigen::Vector2d(std::cos(r.bearing), std::sin(r.bearing));
       const Eigen::Vector2d p = scan->odometry * in_robot;

@@ -22,6 +22,9 @@ struct AlignmentConfig {
   double min_inlier_share = 0.5;  // fewer inliers than this share of the points: failure
   int min_points = 50;
   int max_iterations = 50;
+  // Every point_stride-th hit of the scans only (1: all): an alignment that only has to reach
+  // the right basin (a search's candidates) needs far fewer points than a fix.
+  int point_stride = 1;
   // Stereo depth error grows with range (as range squared for a fixed disparity error):
   // each point's squared residual is weighted by min(1, weight_range / range)^range_exponent.
   // 2 (sigma grows as range): on the lab over 10 seeds the worst home-base heading error
