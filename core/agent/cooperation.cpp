@@ -121,6 +121,30 @@ HomeBaseCooperation::SharedView::SharedView(const SharedMapService& shared,
   aligner.emplace(*map, config);
 }
 
+const char* toString(SortieStatus s) {
+  switch (s) {
+    case SortieStatus::kFixed:
+      return "fixed";
+    case SortieStatus::kNoEntries:
+      return "no radial maps in the sortie";
+    case SortieStatus::kNotLocalized:
+      return "no fix from the look at the home base";
+    case SortieStatus::kFixOnReference:
+      return "the fix fell on a reference scan";
+    case SortieStatus::kFixJumps:
+      return "fix not trusted: it moves the robot farther than a sortie drifts";
+    case SortieStatus::kRivalPlacement:
+      return "fix not trusted: the look fits the shared map better elsewhere";
+    case SortieStatus::kDisagrees:
+      return "fix not trusted: far from where the first fix sent the robot";
+    case SortieStatus::kCorrectionFailed:
+      return "correction failed";
+    case SortieStatus::kHomeUnlike:
+      return "not shared: home does not look like the shared map's";
+  }
+  return "?";
+}
+
 HomeBaseCooperation::Located HomeBaseCooperation::locateSortie(const TraverseLog& sortie,
                                                                const SharedView& view,
                                                                size_t look_from) const {
@@ -132,6 +156,7 @@ HomeBaseCooperation::Located HomeBaseCooperation::locateSortie(const TraverseLog
   rep.sortie = static_cast<int>(reports_.size()) + 1;
   rep.entries = sortie.entries.size();
   if (sortie.entries.empty()) {
+    rep.status = SortieStatus::kNoEntries;
     rep.method = "no radial maps in the sortie";
     return l;
   }
@@ -158,11 +183,13 @@ HomeBaseCooperation::Located HomeBaseCooperation::locateSortie(const TraverseLog
     ret = localizeFromLog(joined, home_, arm_length_, bounded, &*reference_, offset + look_from);
     rep.method = ret.refined ? "alignment to the reference" : "corners";
     if (ret.status == HomeReturnStatus::kOk && ret.observation.entry < offset) {
+      rep.status = SortieStatus::kFixOnReference;
       rep.method = "the fix fell on a reference scan, not on the return turn";
       return l;
     }
   }
   if (ret.status != HomeReturnStatus::kOk) {
+    rep.status = SortieStatus::kNotLocalized;
     rep.method = std::string(toString(ret.status)) +
                  (ret.alignment.message.empty() ? "" : " (" + ret.alignment.message + ")");
     return l;
@@ -186,10 +213,11 @@ HomeBaseCooperation::Located HomeBaseCooperation::locateSortie(const TraverseLog
     std::snprintf(note, sizeof note, "fix not trusted: it moves the robot %.2f m and %.1f deg",
                   (rep.fix.translation() - believed.translation()).norm(),
                   wrapAngle(rep.fix.theta - believed.theta) * 180.0 / M_PI);
+    rep.status = SortieStatus::kFixJumps;
     rep.method = note;
     return l;
   }
-  rep.fixed = true;
+  rep.status = SortieStatus::kFixed;
   return l;
 }
 
@@ -289,14 +317,15 @@ bool HomeBaseCooperation::checkRival(const TraverseLog& sortie, const ScanAligne
           .norm(),
       rival.score, rival.here);
   l.rep.method += note;
+  l.rep.status = SortieStatus::kRivalPlacement;
   return false;
 }
 
 void HomeBaseCooperation::checkExpected(SortieReport& rep,
                                         const std::optional<Eigen::Vector2d>& expected) const {
-  if (rep.fixed && expected &&
+  if (rep.fixed() && expected &&
       (rep.fix.translation() - *expected).norm() > config_.max_disagreement_m) {
-    rep.fixed = false;
+    rep.status = SortieStatus::kDisagrees;
     rep.method +=
         "; fix not trusted: " + std::to_string((rep.fix.translation() - *expected).norm()) +
         " m from where the first fix sent the robot";
@@ -374,13 +403,13 @@ SortieReport HomeBaseCooperation::endSortie(const TraverseLog& sortie,
     for (size_t i : referenceEntries(sortie, config_.home_return))
       reference_log_.entries.push_back(sortie.entries[i]);
   }
-  if (!rep.fixed) return done();
+  if (!rep.fixed()) return done();
   const PoseObservation& observation = l.observation;
 
   // Correct the sortie's traverse and share it.
   CorrectionResult c = correctTraverse(sortie, observation, config_.correction);
   if (!c.ok) {
-    rep.fixed = false;
+    rep.status = SortieStatus::kCorrectionFailed;
     rep.method += "; correction failed: " + c.message;
     return done();
   }
@@ -464,7 +493,7 @@ SortieReport HomeBaseCooperation::endSortie(const TraverseLog& sortie,
     if (points.size() >= 50) {
       rep.home_agreement = aligner->score(points, Pose2());
       if (rep.home_agreement < config_.min_home_agreement) {
-        rep.fixed = false;
+        rep.status = SortieStatus::kHomeUnlike;
         rep.method += "; not shared: at the fix, home does not look like the shared map's (" +
                       std::to_string(rep.home_agreement) + " of the points on its obstacles)";
         return done();

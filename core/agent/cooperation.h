@@ -138,11 +138,26 @@ struct CooperationConfig {
   bool setClosureKinds(const std::string& name);
 };
 
+// How a sortie's end at the home base went (SortieReport::method has the details).
+enum class SortieStatus {
+  kFixed,             // localized at the home base and the traverse corrected
+  kNoEntries,         // no radial maps in the sortie
+  kNotLocalized,      // the look at the home base gave no fix
+  kFixOnReference,    // the fix fell on a reference scan, not on the return turn
+  kFixJumps,          // the fix moves the robot farther than one sortie drifts
+  kRivalPlacement,    // the look fits the shared map better elsewhere
+  kDisagrees,         // the fix is far from where the first fix sent the robot
+  kCorrectionFailed,  // the traverse could not be corrected on the fix
+  kHomeUnlike,        // corrected, home does not look like the shared map's there: not shared
+};
+const char* toString(SortieStatus s);
+
 struct SortieReport {
-  int sortie = 0;                // 1 for the first
-  double stamp = 0.0;            // s: the last entry of the sortie
-  size_t entries = 0;            // radial maps in the sortie
-  bool fixed = false;            // localized at the home base
+  int sortie = 0;      // 1 for the first
+  double stamp = 0.0;  // s: the last entry of the sortie
+  size_t entries = 0;  // radial maps in the sortie
+  SortieStatus status = SortieStatus::kNotLocalized;
+  bool fixed() const { return status == SortieStatus::kFixed; }
   std::string method;            // how it was localized, or why not
   Pose2 correction;              // X_M,estimate: what the fix did to the robot's estimate
   Pose2 fix;                     // the robot's pose in the map frame at the fix
@@ -250,7 +265,7 @@ class HomeBaseCooperation {
   // The report is `rep` of the result.
   struct Located {
     SortieReport rep;
-    PoseObservation observation;               // in the sortie's entries, when rep.fixed
+    PoseObservation observation;               // in the sortie's entries, when rep.fixed()
     std::optional<HomeBaseProtocol> protocol;  // the first sortie's registration
     // What it was located from: endSortie takes it over only for the same.
     size_t entries = 0, look_from = 0;

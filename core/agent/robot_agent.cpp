@@ -519,7 +519,7 @@ void RobotAgent::endSortie(double now) {
     // there. Drive to the start by a first fix and look again.
     located = coop_->locate(sortie, std::nullopt, look_from_);
     const SortieReport& first = located->rep;
-    if (!first.fixed && looks_again_ < kLooksAgain) {
+    if (!first.fixed() && looks_again_ < kLooksAgain) {
       // No fix from this look (someone in the view, the look fitting the shared map
       // elsewhere): to the start as the live estimate places it (the estimate brought the
       // robot back there; on a long sortie the odometry chain drifts metres from it), and
@@ -533,7 +533,7 @@ void RobotAgent::endSortie(double now) {
       return;
     }
     const double off = (first.fix.translation() - home_.translation()).norm();
-    if (first.fixed && off > settings_.reapproach_m) {
+    if (first.fixed() && off > settings_.reapproach_m) {
       reapproaching_ = true;
       look_from_ = sortie.entries.size();
       std::string line =
@@ -553,7 +553,7 @@ void RobotAgent::endSortie(double now) {
   if (reapproaching_ && looks_again_ < kLooksAgain) {
     located = coop_->locate(sortie, expected, look_from_);
     const SortieReport& second = located->rep;
-    if (!second.fixed) {
+    if (!second.fixed()) {
       // The look after driving to the start by the first fix disagrees with it (or found
       // nothing): one of the two was wrong and the robot cannot tell which. Back to the
       // start as the live estimate places it, and a fresh look there.
@@ -573,7 +573,7 @@ void RobotAgent::endSortie(double now) {
   const SortieReport rep =
       coop_->endSortie(sortie, expected, &estimate, look_from_, located ? &*located : nullptr);
   look_from_ = 0;
-  if (rep.fixed) mapper_->setFrame(rep.correction * sortie_frame_);
+  if (rep.fixed()) mapper_->setFrame(rep.correction * sortie_frame_);
   // Joining the team's frame moved the start too.
   home_ = rep.team_frame * home_;
   if (mission_) mission_->moveHome(home_);
@@ -587,9 +587,9 @@ void RobotAgent::endSortie(double now) {
   }
   sortie_begin_ = all.entries.size();
   std::string line = formatted("sortie %d at %.0f s: ", rep.sortie, now) +
-                     std::to_string(rep.entries) + " scans, " + (rep.fixed ? "fixed" : "no fix") +
+                     std::to_string(rep.entries) + " scans, " + (rep.fixed() ? "fixed" : "no fix") +
                      (rep.posted ? ", posted" : "");
-  if (rep.fixed && !rep.posted && !rep.post.reason.empty())
+  if (rep.fixed() && !rep.posted && !rep.post.reason.empty())
     line += ", not posted: " + rep.post.reason;
   line += " (" + rep.method;
   if (calibrate_ && calibration_.weight_m() > 0.0)
@@ -599,7 +599,7 @@ void RobotAgent::endSortie(double now) {
         calibration_.bias().heading_drift, calibration_.bias().turn_scale,
         calibration_.bias().distance_scale);
   log_.push_back(line + ")");
-  sortieEnded(rep.fixed, rep.sortie, now);
+  sortieEnded(rep.fixed(), rep.sortie, now);
 }
 
 }  // namespace coopmap

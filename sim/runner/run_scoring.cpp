@@ -128,9 +128,9 @@ RobotRunResult RunScoring::robotResult(size_t k, const RobotAgent& agent) const 
   if (const HomeBaseCooperation* coop = agent.cooperation()) {
     for (const SortieReport& rep : coop->reports()) {
       ++out.sorties;
-      out.sorties_fixed += rep.fixed;
+      out.sorties_fixed += rep.fixed();
       out.sorties_posted += rep.posted;
-      if (rep.fixed) out.fix_errors.push_back(error(rep.sortie, rep.fix_stamp, rep.fix));
+      if (rep.fixed()) out.fix_errors.push_back(error(rep.sortie, rep.fix_stamp, rep.fix));
     }
     out.corrected = coop->corrected();
   }
