@@ -56,12 +56,9 @@ struct AgentSettings {
   std::string closures = "none";
   bool shaped_closures = true;
   bool closure_seen_points = true;
-  bool closure_decided_points = false;
   int closure_scans = 18;
-  double post_gate_m = 0.0;
   double manhattan_sigma_deg = 0.6;
   double wall_heading_gain = 0.5;
-  bool track_shared_map = false;
   // Odometry calibration.
   bool calibrate_odometry = true;
   bool calibrate_distance_scale = false;
@@ -225,19 +222,10 @@ void AgentSettings::visitAll(Self& s, Visitor&& v) {
                 "the sorties' alignments to the shared map leave out points where the map saw "
                 "nothing (but just behind a surface it saw)"},
     s.closure_seen_points);
-  v(SettingInfo{"closure_decided_points", "",
-                "those alignments also leave out points in cells the map saw but is unsure of"},
-    s.closure_decided_points);
   v(SettingInfo{"closure_scans", "",
-                "radial maps per stretch of a sortie's correction (closures, wall headings, post "
-                "gate)",
-                1, 100},
+                "radial maps per stretch of a sortie's correction (closures, wall headings)", 1,
+                100},
     s.closure_scans);
-  v(SettingInfo{"post_gate_m", "m",
-                "a stretch of a corrected sortie the shared map would move farther than this is "
-                "not posted (0: off)",
-                0.0, 2.0},
-    s.post_gate_m);
   v(SettingInfo{"manhattan_sigma_deg", "deg",
                 "walls along the map frame's axes give each stretch of a sortie's correction a "
                 "heading of this 1-sigma (0: off)",
@@ -248,10 +236,6 @@ void AgentSettings::visitAll(Self& s, Visitor&& v) {
                 "the map frame's axes (0: off)",
                 0.0, 1.0},
     s.wall_heading_gain);
-  v(SettingInfo{"track_shared_map", "",
-                "between home-base fixes, track the estimate against the shared map imported at "
-                "home (off: steer by calibrated odometry)"},
-    s.track_shared_map);
   v(SettingInfo{"calibrate_odometry", "",
                 "calibrate the odometry online with the systematic errors the home-base fixes "
                 "find (off: every sortie on raw odometry)"},

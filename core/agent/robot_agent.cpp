@@ -80,8 +80,6 @@ RobotAgent::RobotAgent(RobotInterface& robot, const AgentSetup& setup,
   c.setClosureKinds(s.closures);  // checked by validate()
   c.closure_shape = s.shaped_closures;
   c.closure_alignment.seen_points_only = s.closure_seen_points;
-  c.closure_alignment.decided_points_only = s.closure_decided_points;
-  c.post_gate_m = s.post_gate_m;
   c.manhattan_sigma_rad = s.manhattan_sigma_deg * M_PI / 180.0;
   c.closure_scans = s.closure_scans;
   // A distance scale calibrated beforehand (neither learnt from the sorties' corrections nor
@@ -442,28 +440,22 @@ void RobotAgent::leaveStart(double now) {
     route_ = std::make_unique<RouteFollower>(setup_.route, RouteConfig{});
 }
 
-// While the robot explores or heads home: the latest radial maps at its current estimate,
-// aligned to the shared map it imported (track_shared_map), and their walls to the map
-// frame's axes (wall_heading_gain); each correction moves the estimate's frame.
+// While the robot explores or heads home: the walls of the latest radial maps, at its current
+// estimate, against the map frame's axes (wall_heading_gain); a correction turns the
+// estimate's frame.
 void RobotAgent::trackWhileDriving() {
   const bool driving =
       mission_ && !reapproaching_ &&
       (mission_->phase() == MissionPhase::kExplore || mission_->phase() == MissionPhase::kReturn);
-  if (!driving || !(tracker_.hasMap() || headings_.enabled())) return;
+  if (!driving || !headings_.enabled()) return;
   const std::vector<TraverseEntry>& entries = mapper_->traverse().entries;
   const size_t k =
-      std::min(entries.size() - sortie_begin_,
-               static_cast<size_t>(std::max(tracker_.config().scans, headings_.config().scans)));
+      std::min(entries.size() - sortie_begin_, static_cast<size_t>(headings_.config().scans));
   std::vector<RadialMap> latest;
   for (size_t j = entries.size() - k; j < entries.size(); ++j) {
     latest.push_back(entries[j].scan);
     latest.back().odometry = mapper_->frame() * mapper_->rawOdometry()[j];
   }
-  if (tracker_.hasMap())
-    if (const std::optional<Pose2> c = tracker_.update(latest)) {
-      mapper_->setFrame(*c * mapper_->frame());
-      for (RadialMap& m : latest) m.odometry = *c * m.odometry;
-    }
   if (const std::optional<Pose2> c = headings_.update(latest))
     mapper_->setFrame(*c * mapper_->frame());
 }
@@ -581,10 +573,7 @@ void RobotAgent::endSortie(double now) {
   sortie_frame_ = mapper_->frame();
   sortie_scale_ = calibration_.bias().distance_scale;
   const SharedMapSnapshot snap = shared_->snapshot();
-  if (snap.version > 0) {
-    mapper_->importMap(snap.log_odds, snap.seen);
-    if (settings_.track_shared_map) tracker_.setMap(mapper_->grid());
-  }
+  if (snap.version > 0) mapper_->importMap(snap.log_odds, snap.seen);
   sortie_begin_ = all.entries.size();
   std::string line = formatted("sortie %d at %.0f s: ", rep.sortie, now) +
                      std::to_string(rep.entries) + " scans, " + (rep.fixed() ? "fixed" : "no fix") +

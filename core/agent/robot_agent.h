@@ -178,7 +178,6 @@ class RobotAgent {
   int looks_again_ = 0;
   size_t look_from_ = 0;
   Pose2 sortie_frame_;  // the estimate's frame when the sortie began
-  MapTracker tracker_;
   WallHeadingTracker headings_;
   OdometryCalibration calibration_;
   bool calibrate_ = false;

@@ -36,9 +36,9 @@ TEST(AgentSettingsTest, EverySettingIsReadFromYaml) {
       "1.4, beyond_support: 2, shaped_closures: false, bump_away: false, visited_radius: 0.1, "
       "max_linear_accel: 0.3, calibrate_distance_scale: true, stereo_distance_scale: true, "
       "passage_width: 1.3, odometry_distance_scale: 0.012, sortie_budget_m: 30, "
-      "planning_margin: 0.2, preferred_margin: 0.25, closures: both, post_gate_m: 0.25, "
+      "planning_margin: 0.2, preferred_margin: 0.25, closures: both, "
       "recent_hits_s: 8, manhattan_sigma_deg: 0.7, wall_heading_gain: 0.4, closure_scans: 12, "
-      "closure_seen_points: false, closure_decided_points: true, look_again_gain: 30}");
+      "closure_seen_points: false, look_again_gain: 30}");
   EXPECT_EQ(m.first_sortie_budget_m, 11.0);
   EXPECT_EQ(m.safety_distance, 0.5);
   EXPECT_EQ(m.slow_distance, 1.1);
@@ -60,13 +60,11 @@ TEST(AgentSettingsTest, EverySettingIsReadFromYaml) {
   EXPECT_EQ(m.planning_margin, 0.2);
   EXPECT_EQ(m.preferred_margin, 0.25);
   EXPECT_EQ(m.closures, "both");
-  EXPECT_EQ(m.post_gate_m, 0.25);
   EXPECT_EQ(m.recent_hits_s, 8.0);
   EXPECT_EQ(m.manhattan_sigma_deg, 0.7);
   EXPECT_EQ(m.wall_heading_gain, 0.4);
   EXPECT_EQ(m.closure_scans, 12);
   EXPECT_EQ(m.closure_seen_points, false);
-  EXPECT_EQ(m.closure_decided_points, true);
   EXPECT_EQ(m.look_again_gain, 30);
   // What a file does not name keeps its value.
   EXPECT_EQ(read("{safety_distance: 0.5}").sortie_budget_s, AgentSettings{}.sortie_budget_s);
