@@ -116,8 +116,9 @@ SharedMapResult shareMaps(const HomeBaseDesign& design, const MapLimits& limits,
       ++out.posts_accepted;
       out.posted.push_back(log.robot);
     } else {
-      out.refused.push_back(log.robot + ": " +
-                            (rep.fixed() && !rep.post.reason.empty() ? rep.post.reason : rep.method));
+      out.refused.push_back(
+          log.robot + ": " +
+          (rep.fixed() && !rep.post.reason.empty() ? rep.post.reason : rep.method));
     }
   }
   const Eigen::Vector2d from = start.translation();
