@@ -409,6 +409,7 @@ void MissionAgent::returnAgain(const Pose2& home) {
 MotionCommand MissionAgent::update(double now, const Pose2& odometry, const OccupancyGrid& map,
                                    const RadialMap* latest, bool bumped,
                                    std::optional<double> bump_bearing) {
+  trackTeammates(now);
   const MotionCommand decided = decide(now, odometry, map, latest, bumped, bump_bearing);
   const MotionCommand cmd = limitSpeedUp(decided, sent_linear_, config_.max_linear_accel,
                                          sent_at_ < 0.0 ? 0.0 : now - sent_at_);
@@ -510,7 +511,7 @@ MotionCommand MissionAgent::decide(double now, const Pose2& odometry, const Occu
   passage_wait_since_ = -1.0;
 
   // A teammate ahead: stop and wait; after a while plan around it.
-  if (moving && follower_ && last_command_.linear > 0.0 && teammateAhead(odometry)) {
+  if (moving && follower_ && last_command_.linear > 0.0 && teammateInTheWay(odometry)) {
     if (team_wait_until_ < 0.0) {
       ++team_stops_;
       team_wait_until_ = now + (priority_ ? 0.25 : 1.0) * config_.team_wait_s;
@@ -533,7 +534,7 @@ MotionCommand MissionAgent::decide(double now, const Pose2& odometry, const Occu
     }
     return last_command_ = MotionCommand::stop();
   }
-  if (team_wait_until_ >= 0.0 && !teammateAhead(odometry)) team_wait_until_ = -1.0;
+  if (team_wait_until_ >= 0.0 && !teammateInTheWay(odometry)) team_wait_until_ = -1.0;
 
   switch (phase_) {
     case MissionPhase::kLookAtHome: {

@@ -137,6 +137,12 @@ struct MissionConfig {
   // closer than its disc (once planned around, the robot drives on); nearer, always (what a
   // teammate reports is off by its drift until its next fix).
   double team_close = 0.6;
+  // s: two robots converging from the sides do not see each other (their cameras look ahead).
+  // The one without priority also stops, as for a teammate ahead, while at the speeds they
+  // report (the teammate's over the last team_velocity_s) the teammate would come within
+  // team_radius of its body in the next team_horizon_s.
+  double team_horizon_s = 2.0;
+  double team_velocity_s = 0.5;
   // Passages one robot at a time (a door): where the way ahead, within passage_lookahead,
   // runs between obstacles (occupied cells) less than passage_width apart, and a teammate is
   // within passage_radius of that place and nearer to it than this robot (or as near, and
@@ -326,6 +332,13 @@ class MissionAgent {
   double team_wait_until_ = -1.0;  // waiting for a teammate ahead until then
   int team_stops_ = 0;
   bool teammateAhead(const Pose2& pose) const;
+  // A teammate ahead, or (without priority) one converging on this robot's way.
+  bool teammateInTheWay(const Pose2& pose) const;
+  // Where the teammates were team_velocity_s ago, and their velocities since (map frame).
+  void trackTeammates(double now);
+  std::vector<Eigen::Vector2d> teammates_before_;
+  std::vector<Eigen::Vector2d> teammate_velocities_;
+  double teammates_before_at_ = -1.0;
   // The rest of the path being followed, from `pose` (or straight to the target).
   std::vector<Eigen::Vector2d> wayAhead(const Pose2& pose) const;
   // The first place within passage_lookahead along the way where it runs through a passage

@@ -98,4 +98,35 @@ bool MissionAgent::teammateAhead(const Pose2& pose) const {
   return false;
 }
 
+void MissionAgent::trackTeammates(double now) {
+  if (teammates_.size() != teammates_before_.size()) {
+    teammates_before_ = teammates_;
+    teammates_before_at_ = now;
+    teammate_velocities_.assign(teammates_.size(), Eigen::Vector2d::Zero());
+    return;
+  }
+  if (now - teammates_before_at_ < config_.team_velocity_s) return;
+  for (size_t k = 0; k < teammates_.size(); ++k)
+    teammate_velocities_[k] = (teammates_[k] - teammates_before_[k]) / (now - teammates_before_at_);
+  teammates_before_ = teammates_;
+  teammates_before_at_ = now;
+}
+
+bool MissionAgent::teammateInTheWay(const Pose2& pose) const {
+  if (teammateAhead(pose)) return true;
+  if (priority_ || teammate_velocities_.size() != teammates_.size()) return false;
+  // Closest approach at constant velocities: this robot's as commanded, along its heading.
+  const Eigen::Vector2d mine =
+      last_command_.linear * Eigen::Vector2d(std::cos(pose.theta), std::sin(pose.theta));
+  const double clear = config_.team_radius + config_.planning.robot_radius;
+  for (size_t k = 0; k < teammates_.size(); ++k) {
+    const Eigen::Vector2d r = teammates_[k] - pose.translation();
+    const Eigen::Vector2d w = teammate_velocities_[k] - mine;
+    if (r.dot(w) >= 0.0) continue;  // not closing in
+    const double t = std::min(-r.dot(w) / w.squaredNorm(), config_.team_horizon_s);
+    if ((r + t * w).norm() < clear) return true;
+  }
+  return false;
+}
+
 }  // namespace coopmap

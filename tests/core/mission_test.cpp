@@ -266,6 +266,58 @@ RadialMap aheadAt(std::optional<double> range) {
   return scan;
 }
 
+// Two robots converging from the sides see nothing of each other in their cameras: the one
+// without priority stops while the teammate, at the speed it reports, would come within its
+// disc; the one with priority drives on (here the teammate never yields: they meet).
+TEST(MissionTest, WaitsForATeammateConvergingFromTheSide) {
+  const Pose2 home(2.0, 3.0, 0.0);
+  const OccupancyGrid map = lookedAround(Pose2(1.0, 3.0, 0.0));
+  auto closest = [&](bool priority, int* stops) {
+    MissionConfig c;
+    c.look_wait_s = 0.2;
+    c.look_turn_rate = 3.0;
+    c.planner.seed = 4;
+    MissionAgent mission(home, c);
+    mission.startFrom(home, 0.0);  // the odometry frame is the map frame
+    Pose2 pose = home;
+    const double dt = 0.05;
+    // Once the robot drives, the teammate sets off 1.2 m to its left, 1.2 m ahead of it, and
+    // crosses its way at the robot's speed: both would reach the crossing together.
+    std::optional<Eigen::Vector2d> start, velocity;
+    double start_t = 0.0, nearest = 1e9;
+    for (int step = 0; step < 1200; ++step) {
+      const double t = step * dt;
+      std::vector<Eigen::Vector2d> teammates;
+      if (start) teammates.push_back(*start + (t - start_t) * *velocity);
+      mission.setTeammates(teammates, priority);
+      const MotionCommand cmd = mission.update(t, pose, map, nullptr);
+      if (!start && mission.phase() == MissionPhase::kExplore && cmd.linear > 0.3) {
+        const Eigen::Vector2d ahead(std::cos(pose.theta), std::sin(pose.theta));
+        const Eigen::Vector2d left(-ahead.y(), ahead.x());
+        const Eigen::Vector2d crossing = pose.translation() + 1.2 * ahead;
+        start = crossing + 1.2 * left;
+        velocity = -cmd.linear * left;
+        start_t = t;
+      }
+      if (start && t - start_t < 8.0)
+        nearest =
+            std::min(nearest, (*start + (t - start_t) * *velocity - pose.translation()).norm());
+      pose = pose * Pose2(cmd.linear * dt, 0.0, cmd.angular * dt);
+    }
+    *stops = mission.teamStops();
+    return nearest;
+  };
+  // Nearer than this, the teammate is inside the disc the planning map draws for it.
+  const MissionConfig c;
+  const double disc = c.team_radius + c.planning.robot_radius;
+  int stops = 0;
+  const double yielding = closest(false, &stops);
+  EXPECT_GT(yielding, disc);
+  EXPECT_GE(stops, 1);
+  // With priority only the teammate ahead, seen late, stops it.
+  EXPECT_LT(closest(true, &stops), disc);
+}
+
 TEST(MissionTest, SlowsDownForWhatIsNearAhead) {
   // Cruise 0.4 m/s; an obstacle 0.65 m ahead, halfway between safety_distance (0.3 m) and
   // slow_distance (1 m), halves the speed; once it is gone, the robot speeds up again.
