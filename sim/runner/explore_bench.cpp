@@ -37,6 +37,9 @@ constexpr double kCoverageTarget = 0.90;
 constexpr double kWallRecallTarget = 0.95;
 constexpr double kFalseOccupiedTarget = 0.01;
 constexpr int kWorstShown = 5;
+// A robot that ends "exploration complete" with more of the reachable floor unseen than this
+// share ended too early.
+constexpr double kUnseenAtCompletion = 0.05;
 
 std::string number(double v, int digits) {
   char b[64];
@@ -253,7 +256,7 @@ std::string formatExploreMarkdown(const ExploreBenchOptions& o,
   std::vector<const ExploreRow*> ran;
   std::vector<double> coverage, recall, false_occupied;
   int failed = 0, meet_coverage = 0, meet_recall = 0, meet_false = 0, meet_contacts = 0,
-      meet_all = 0;
+      meet_all = 0, meet_completion = 0;
   for (const ExploreRow& r : rows) {
     if (r.failed) {
       ++failed;
@@ -270,6 +273,11 @@ std::string formatExploreMarkdown(const ExploreBenchOptions& o,
     meet_false += f;
     meet_contacts += k;
     meet_all += c && w && f && k;
+    const bool early = std::any_of(r.endings.begin(), r.endings.end(), [&](const ExploreEnding& e) {
+      return e.reason.find("exploration complete") != std::string::npos &&
+             r.coverage < 1.0 - kUnseenAtCompletion;
+    });
+    meet_completion += !early;
   }
   const int n = static_cast<int>(ran.size());
   std::ostringstream md;
@@ -295,7 +303,10 @@ std::string formatExploreMarkdown(const ExploreBenchOptions& o,
      << "| false_occupied_rate <= " << number(kFalseOccupiedTarget, 2) << " | " << meet_false
      << " |\n"
      << "| no contact | " << meet_contacts << " |\n"
-     << "| all four | " << meet_all << " |\n";
+     << "| all four | " << meet_all << " |\n"
+     << "| no robot ends \"exploration complete\" with more than "
+     << number(100.0 * kUnseenAtCompletion, 0) << " % of the floor unseen | " << meet_completion
+     << " |\n";
 
   std::vector<const ExploreRow*> worst = ran;
   std::stable_sort(worst.begin(), worst.end(), [](const ExploreRow* a, const ExploreRow* b) {

@@ -150,6 +150,9 @@ TEST(ExploreBenchTest, SummaryCountsTargetsAndListsTheWorstFirst) {
   };
   rows[6].failed = true;
   rows[6].endings = {{"jose", "failed", "killed by signal 6"}};
+  // Ended "exploration complete": with 19 % of the floor unseen (too early), with 5 % (not).
+  rows[1].endings = {{"jose", "done", "exploration complete: 2 frontiers, none reachable"}};
+  rows[0].endings = {{"jose", "done", "exploration complete: no frontier left"}};
   const std::string md = formatExploreMarkdown(o, rows);
   EXPECT_NE(md.find("6 runs finished, 1 failed"), std::string::npos) << md;
   EXPECT_NE(md.find("| coverage >= 0.90 | 4 |"), std::string::npos) << md;
@@ -157,6 +160,10 @@ TEST(ExploreBenchTest, SummaryCountsTargetsAndListsTheWorstFirst) {
   EXPECT_NE(md.find("| false_occupied_rate <= 0.01 | 4 |"), std::string::npos) << md;
   EXPECT_NE(md.find("| no contact | 4 |"), std::string::npos) << md;
   EXPECT_NE(md.find("| all four | 1 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| no robot ends \"exploration complete\" with more than 5 % of the floor "
+                    "unseen | 5 |"),
+            std::string::npos)
+      << md;
   // Coverage 0.10, 0.81, 0.95 x4: quartiles over the six that ran.
   EXPECT_NE(md.find("| coverage | 0.845 | 0.950 | 0.950 |"), std::string::npos) << md;
   // Five worst: 6, 2, then the first three of the ties in seed order; not seed 5 nor the
