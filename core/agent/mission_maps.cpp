@@ -1,168 +1,22 @@
-// The mission's maps (core/agent/mission.h): the conservative map it plans on (its map,
-// where it has been, what its cameras have just seen, what its bumpers touched, teammates),
-// and the free cells it steps off to or heads for when it cannot plan where it wants.
-#include "core/agent/mission.h"
+#include "core/agent/mission_maps.h"
 
 #include <algorithm>
 #include <cmath>
-#include <unordered_map>
-#include <utility>
 
 namespace coopmap {
 
-namespace {
-
-// Sets every cell of `grid` whose centre lies within `radius` of `p` to `value`.
-template <typename T>
-void fillDisc(Grid<T>& grid, const Eigen::Vector2d& p, double radius, T value) {
-  const MapLimits& lim = grid.limits;
-  const int n = static_cast<int>(std::ceil(radius / lim.resolution));
-  const int cx = lim.cellX(p.x()), cy = lim.cellY(p.y());
-  for (int iy = cy - n; iy <= cy + n; ++iy)
-    for (int ix = cx - n; ix <= cx + n; ++ix)
-      if (lim.contains(ix, iy) && (lim.cellCenter(ix, iy) - p).norm() <= radius)
-        grid.at(ix, iy) = value;
-}
-
-}  // namespace
-
-bool MissionAgent::nearWay(const std::vector<Eigen::Vector2d>& way, const Eigen::Vector2d& p,
-                           double within) {
-  for (size_t k = 0; k + 1 < way.size(); ++k) {
-    const Eigen::Vector2d a = way[k], ab = way[k + 1] - a;
-    const double t =
-        ab.squaredNorm() > 0.0 ? std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
-    if ((a + t * ab - p).norm() < within) return true;
-  }
-  return false;
-}
-
-PlanningMap MissionAgent::planningMap(const OccupancyGrid& map, bool allow_unknown, bool recent,
-                                      double margin, bool trail) const {
-  // Where the robot has been is free though the cameras never saw it (they never see beneath
-  // the robot), or saw a weak obstacle there (a stereo mismatch). Not where they saw an
-  // obstacle again and again: the estimate drifts, so "where it has been" can lie on a table
-  // it saw a minute ago.
-  // With a narrow visited strip, the whole footprint where the robot stands now (the planner
-  // starts there).
-  const MapLimits& lim = map.limits();
-  const double footprint =
-      config_.visited_radius > 0.0 && config_.visited_radius < config_.planning.robot_radius
-          ? config_.planning.robot_radius
-          : 0.0;
-  Grid<CellState> states(lim, CellState::kUnknown);
-  for (int iy = 0; iy < lim.height; ++iy)
-    for (int ix = 0; ix < lim.width; ++ix) {
-      const CellState seen = map.state(ix, iy);
-      const bool visited =
-          (!visited_.cells.empty() && visited_.at(ix, iy)) ||
-          (footprint > 0.0 && (lim.cellCenter(ix, iy) - last_pose_.translation()).squaredNorm() <=
-                                  footprint * footprint);
-      const bool firm =
-          seen == CellState::kOccupied && map.logOdds(ix, iy) >= config_.firm_log_odds;
-      const bool on_trail = trail && !trail_.cells.empty() && trail_.at(ix, iy);
-      states.at(ix, iy) = on_trail || (visited && !firm) ? CellState::kFree : seen;
-    }
-  // What the cameras saw a moment ago, where the robot's estimate put it then.
-  if (recent) {
-    const double keep_out =
-        config_.planning.robot_radius + config_.planning.margin + 2.0 * lim.resolution;
-    // cell -> (the last frame that saw it, how many frames did)
-    std::unordered_map<size_t, std::pair<int, int>> seen_by;
-    for (const RecentHit& h : recent_) {
-      const int ix = lim.cellX(h.p.x()), iy = lim.cellY(h.p.y());
-      if (!lim.contains(ix, iy)) continue;
-      const double d = (lim.cellCenter(ix, iy) - last_pose_.translation()).norm();
-      if (d <= keep_out || d > config_.recent_hits_range) continue;
-      if (trail && !trail_.cells.empty() && trail_.at(ix, iy)) continue;  // trail_after_waits
-      auto& [frame, frames] = seen_by[lim.index(ix, iy)];
-      if (frame != h.frame) {
-        frame = h.frame;
-        if (++frames == config_.recent_hits_support) states.at(ix, iy) = CellState::kOccupied;
-      }
-    }
-  }
-  // What the bumpers touched this sortie, and teammates while they stand where they are.
-  for (const Eigen::Vector2d& p : bumps_)
-    fillDisc(states, p, config_.bump_radius, CellState::kOccupied);
-  PlanningMapConfig c = config_.planning;
-  c.allow_unknown = allow_unknown;
-  if (margin >= 0.0) c.margin = margin;
-  // A teammate standing nearer than its disc and this robot's clearance (two robots placed
-  // side by side, one coming back to the home base beside the other) leaves free the cells
-  // the robot's own clearance needs where it stands: else both stand on blocked cells and
-  // neither can plan a step away. The rest of the disc stands, so the only ways out lead
-  // away from the teammate.
-  const double own_clearance = c.robot_radius + c.margin + lim.resolution;
-  for (const Eigen::Vector2d& p : teammates_) {
-    const MapLimits& l = states.limits;
-    const int n = static_cast<int>(std::ceil(config_.team_radius / l.resolution));
-    const int cx = l.cellX(p.x()), cy = l.cellY(p.y());
-    for (int iy = cy - n; iy <= cy + n; ++iy)
-      for (int ix = cx - n; ix <= cx + n; ++ix) {
-        if (!l.contains(ix, iy)) continue;
-        const Eigen::Vector2d cell = l.cellCenter(ix, iy);
-        if ((cell - p).norm() <= config_.team_radius &&
-            (cell - last_pose_.translation()).norm() > own_clearance)
-          states.at(ix, iy) = CellState::kOccupied;
-      }
-  }
-  return PlanningMap(states, c);
-}
-
-size_t MissionAgent::rememberHits(double now, const Pose2& odometry, const RadialMap& scan) {
-  const double since = now - config_.recent_hits_s;
-  size_t old = 0;
-  while (old < recent_.size() && recent_[old].t < since) ++old;
-  recent_.erase(recent_.begin(), recent_.begin() + static_cast<std::ptrdiff_t>(old));
-  const size_t before = recent_.size();
-  ++recent_frames_;
-  for (const RadialReading& r : scan.readings)
-    if (r.kind == RadialKind::kHit && r.range <= config_.recent_hits_range)
-      recent_.push_back(
-          {now, recent_frames_,
-           odometry * (scan.sensor_origin +
-                       r.range * Eigen::Vector2d(std::cos(r.bearing), std::sin(r.bearing)))});
-  return recent_.size() - before;
-}
-
-bool MissionAgent::freshHitOnWay(const Pose2& pose, size_t fresh) const {
-  if (fresh == 0) return false;
-  const std::vector<Eigen::Vector2d> way = wayAhead(pose);
-  // The planning map's clearance, and a cell's diagonal for where in its cell a hit lies.
-  const double reach = config_.planning.robot_radius + config_.planning.margin + 0.1;
-  for (size_t k = recent_.size() - fresh; k < recent_.size(); ++k)
-    if (nearWay(way, recent_[k].p, reach)) return true;
-  return false;
-}
-
-void MissionAgent::markVisited(const OccupancyGrid& map, const Pose2& odometry) {
-  const MapLimits& lim = map.limits();
-  if (visited_.cells.empty()) visited_ = GridU8(lim, 0);
-  const double r =
-      config_.visited_radius > 0.0 ? config_.visited_radius : config_.planning.robot_radius;
-  fillDisc(visited_, odometry.translation(), r, uint8_t{1});
-  if (config_.trail_after_waits > 0) {
-    if (trail_.cells.empty()) trail_ = GridU8(lim, 0);
-    // Wide enough that a path along it keeps the least margin (goHome) from what lies beyond.
-    fillDisc(trail_, odometry.translation(),
-             config_.planning.robot_radius + leastMargin(lim) + lim.resolution, uint8_t{1});
-  }
-}
-
-std::optional<Eigen::Vector2d> MissionAgent::nearestFreeCell(const PlanningMap& planning,
-                                                             const Pose2& odometry) const {
+std::optional<Eigen::Vector2d> nearestFreeCell(const PlanningMap& planning,
+                                               const Eigen::Vector2d& from, double within) {
   const MapLimits& lim = planning.limits();
-  const int n = static_cast<int>(std::ceil(config_.escape_radius / lim.resolution));
-  const int cx = lim.cellX(odometry.x), cy = lim.cellY(odometry.y);
+  const int n = static_cast<int>(std::ceil(within / lim.resolution));
+  const int cx = lim.cellX(from.x()), cy = lim.cellY(from.y());
   double best = 1e300;
   std::optional<Eigen::Vector2d> to;
   for (int iy = cy - n; iy <= cy + n; ++iy)
     for (int ix = cx - n; ix <= cx + n; ++ix) {
       const Eigen::Vector2d c = lim.cellCenter(ix, iy);
-      const double d = (c - odometry.translation()).norm();
-      if (d < best && d <= config_.escape_radius && planning.free(ix, iy) &&
-          planning.segmentFree(c, c)) {
+      const double d = (c - from).norm();
+      if (d < best && d <= within && planning.free(ix, iy) && planning.segmentFree(c, c)) {
         best = d;
         to = c;
       }
@@ -170,14 +24,14 @@ std::optional<Eigen::Vector2d> MissionAgent::nearestFreeCell(const PlanningMap& 
   return to;
 }
 
-std::optional<Eigen::Vector2d> MissionAgent::nearestReachable(const PlanningMap& planning,
-                                                              const Pose2& from,
-                                                              const Eigen::Vector2d& to) const {
+std::optional<Eigen::Vector2d> nearestReachable(const PlanningMap& planning,
+                                                const Eigen::Vector2d& from,
+                                                const Eigen::Vector2d& to) {
   const MapLimits& lim = planning.limits();
-  const int region = planning.region(lim.cellX(from.x), lim.cellY(from.y));
+  const int region = planning.region(lim.cellX(from.x()), lim.cellY(from.y()));
   if (region == 0) return std::nullopt;
-  const double start = (to - from.translation()).norm();
-  double best = start - 0.5;  // worth going only if it is at least 0.5 m nearer home
+  const double start = (to - from).norm();
+  double best = start - 0.5;  // worth going only if it is at least 0.5 m nearer
   std::optional<Eigen::Vector2d> out;
   for (int iy = 0; iy < lim.height; ++iy)
     for (int ix = 0; ix < lim.width; ++ix) {
@@ -190,6 +44,22 @@ std::optional<Eigen::Vector2d> MissionAgent::nearestReachable(const PlanningMap&
       }
     }
   return out;
+}
+
+bool nearWay(const std::vector<Eigen::Vector2d>& way, const Eigen::Vector2d& p, double within) {
+  for (size_t k = 0; k + 1 < way.size(); ++k) {
+    const Eigen::Vector2d a = way[k], ab = way[k + 1] - a;
+    const double t =
+        ab.squaredNorm() > 0.0 ? std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
+    if ((a + t * ab - p).norm() < within) return true;
+  }
+  return false;
+}
+
+std::vector<Waypoint> routeAlong(const std::vector<Eigen::Vector2d>& waypoints) {
+  std::vector<Waypoint> route;
+  for (size_t i = 1; i < waypoints.size(); ++i) route.push_back({waypoints[i], false, 0.0, 0.0});
+  return route;
 }
 
 }  // namespace coopmap

@@ -1,0 +1,183 @@
+#include "core/agent/exploration_goals.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/agent/mission_maps.h"
+
+namespace coopmap {
+
+ExplorationGoals::ExplorationGoals(const MissionConfig& config)
+    : config_(config), explorer_(config.frontiers, config.planner), planner_(config.planner) {}
+
+GoalChoice ExplorationGoals::choose(double now, const Pose2& odometry, const PlanningMaps& maps,
+                                    double travelled) {
+  GoalChoice choice;
+  // Goals by the map: what was just seen (a person, a teammate passing) is no reason to end
+  // the exploration or give a frontier up. The path to the goal goes round it, if it can.
+  const PlanningMap planning = maps({.recent = false});
+  if (!planning.freeAt(odometry.translation())) {
+    // Something seen too close (a stereo mismatch, a person passing) leaves the robot on a
+    // cell the planner will not start from: step to the nearest free one first.
+    const std::optional<Eigen::Vector2d> to =
+        nearestFreeCell(planning, odometry.translation(), config_.escape_radius);
+    if (to && !escaping_) {
+      escaping_ = true;
+      has_goal_ = false;
+      choice.kind = GoalChoice::Kind::kStepOff;
+      choice.route = {{*to, false, 0.0, 0.0}};
+      choice.event = "stepping off a blocked cell";
+      return choice;
+    }
+  }
+  escaping_ = false;
+  const ExploreStep step = explorer_.next(maps.map(), planning, odometry, claims_);
+  choice.kind = GoalChoice::Kind::kGoHome;
+  if (step.status == ExploreStatus::kBlocked) {
+    // Stepping off did not help (or nothing free is near): nothing can be planned from
+    // here, which says nothing about what is left to explore. Home, and try again from there.
+    choice.event = "on a blocked cell: going home";
+    return choice;
+  }
+  const bool idle = travelled < config_.min_sortie_m;
+  if (!idle) idle_sorties_ = 0;  // this sortie got somewhere: the row of idle ones is broken
+  if (config_.retry_frontiers && step.status == ExploreStatus::kDone && step.failed_left > 0 &&
+      config_.max_sorties > 1 && (!idle || idle_sorties_ + 1 < MissionConfig::kMaxIdleSorties)) {
+    // Frontiers are left that this sortie could not reach (their goals failed, or have no
+    // way to them in this map). After an import the map is another: home to share, and try
+    // them again from there, unless sorties from the start keep finding none within reach.
+    if (idle) ++idle_sorties_;
+    choice.event = "no reachable frontier for now: " + step.reason;
+    return choice;
+  }
+  if (step.status != ExploreStatus::kGoal) {
+    exploration_complete_ = true;
+    choice.event = complete_reason_ = "exploration complete: " + step.reason;
+    return choice;
+  }
+  if (config_.max_sorties > 1 && step.claim_factor < config_.claimed_return_factor &&
+      travelled >= config_.min_sortie_m) {
+    // What is left is near where teammates explore: share this part now.
+    ++early_returns_;
+    choice.event = "own part explored: the frontiers left are teammates'";
+    return choice;
+  }
+  choice.kind = GoalChoice::Kind::kGoal;
+  choice.path = step.plan.path;
+  if (maps.memory().hasRecentHits()) {
+    const PlanningMap seen_now = maps();
+    if (!pathStillValid(choice.path, seen_now)) {
+      const PlanResult around = planner_.plan(seen_now, odometry, step.frontier.goal);
+      if (around.solved()) choice.path = around.path;
+    }
+  }
+  goal_ = step.frontier.goal;
+  has_goal_ = true;
+  goal_deadline_ = now + config_.goal_timeout_factor *
+                             (choice.path.length() / config_.route.linear_speed + 10.0);
+  last_check_ = now;
+  // Arriving, face the frontier: the robot would face the way it came, often not the
+  // frontier's (a corridor's mouth passed at its side), and a frontier not seen from its goal
+  // is not gone to again.
+  goal_face_.reset();
+  const Eigen::Vector2d to_frontier = step.frontier.centroid - goal_;
+  if (to_frontier.norm() > maps.map().limits().resolution) {
+    goal_face_ = std::atan2(to_frontier.y(), to_frontier.x());
+    goal_deadline_ += config_.goal_timeout_factor * M_PI / config_.route.angular_speed;
+  }
+  choice.route = route(choice.path, odometry);
+  if (step.look_around) {
+    // Its frontier was not seen from this goal before: a full circle there shows it.
+    if (choice.route.empty()) choice.route.push_back({odometry.translation(), false, 0.0, 0.0});
+    choice.route.back().spin = true;
+    goal_deadline_ += config_.goal_timeout_factor * 2.0 * M_PI / config_.route.angular_speed;
+  }
+  choice.event = std::string(step.look_around ? "to look around again at (" : "to frontier at (") +
+                 std::to_string(goal_.x()) + ", " + std::to_string(goal_.y()) + ")";
+  return choice;
+}
+
+std::vector<Waypoint> ExplorationGoals::route(const PlannedPath& path,
+                                              const Pose2& odometry) const {
+  std::vector<Waypoint> route = routeAlong(path.waypoints);
+  if (goal_face_) {
+    if (route.empty()) route.push_back({odometry.translation(), false, 0.0, 0.0});
+    route.back().face = goal_face_;
+    route.back().face_within = config_.route.heading_tolerance;  // a look, not a home-base look
+  }
+  return route;
+}
+
+std::optional<PlannedPath> ExplorationGoals::pathAround(const PlanningMaps& maps,
+                                                        const Pose2& odometry) const {
+  const PlanResult around = planner_.plan(maps(), odometry, goal_);
+  if (!around.solved()) return std::nullopt;
+  return around.path;
+}
+
+bool ExplorationGoals::checkDue(double now, bool seen_on_way) {
+  if (!(has_goal_ && (seen_on_way || now - last_check_ >= config_.replan_period_s))) return false;
+  last_check_ = now;
+  return true;
+}
+
+GoalCheck ExplorationGoals::recheck(const PlanningMaps& maps, const PlannedPath& path,
+                                    const Pose2& odometry, size_t next) {
+  GoalCheck check;
+  // The map grew under the path: go on if it is still free, else plan anew.
+  const PathPlanner::Replan r = planner_.replanIfBlocked(maps(), path, odometry, next);
+  if (!r.replanned) return check;
+  if (r.result.solved()) {
+    check.kind = GoalCheck::Kind::kReplanned;
+    check.path = r.result.path;
+    check.event = "path blocked: replanned";
+  } else if (maps.memory().hasRecentHits() && r.result.status == PlanStatus::kGoalInvalid &&
+             maps({.recent = false}).freeAt(goal_)) {
+    // The goal stands by what the cameras have just seen: its frontier is seen.
+    seen();
+    check.kind = GoalCheck::Kind::kTakenAsSeen;
+    check.event = "goal by what was just seen: taken as seen";
+  } else {
+    giveUp();
+    check.kind = GoalCheck::Kind::kGivenUp;
+    check.event = "path blocked, no new one: goal given up";
+  }
+  return check;
+}
+
+void ExplorationGoals::reached() {
+  ++goals_reached_;
+  if (has_goal_) seen();
+}
+
+void ExplorationGoals::giveUp() {
+  if (has_goal_) explorer_.blacklist(goal_);
+  ++goals_failed_;
+}
+
+void ExplorationGoals::seen() {
+  // The frontier is seen from there or never will be. With retry_frontiers, reached goals
+  // are remembered for good (what the robot did not see from there it will not); else the
+  // goal is blacklisted for the sortie like a failed one.
+  if (config_.retry_frontiers)
+    explorer_.markReached(goal_);
+  else
+    explorer_.blacklist(goal_);
+}
+
+void ExplorationGoals::claim(const std::vector<Eigen::Vector2d>& goals) {
+  for (const Eigen::Vector2d& g : goals) {
+    const bool known = std::any_of(claims_.begin(), claims_.end(), [&](const Eigen::Vector2d& c) {
+      return (c - g).norm() < config_.frontiers.blacklist_radius;
+    });
+    if (!known) claims_.push_back(g);
+  }
+}
+
+void ExplorationGoals::startSortie() {
+  claims_.clear();
+  explorer_.clearBlacklist();
+  has_goal_ = false;
+}
+
+}  // namespace coopmap
