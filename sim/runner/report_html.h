@@ -8,14 +8,9 @@
 
 #include "core/io/tum.h"
 #include "core/mapping/grid.h"
+#include "sim/runner/svg_plot.h"
 
 namespace coopmap {
-
-// One line of a plot.
-struct ReportSeries {
-  std::string name;                               // legend
-  std::vector<std::pair<double, double>> points;  // (t s, value); non-finite points break the line
-};
 
 // One robot's trajectories, in the world frame of the true map.
 struct ReportRobot {
@@ -53,20 +48,6 @@ std::string escapeHtml(const std::string& text);
 // `limits`, or else the poses with a 1 m margin. Throws std::invalid_argument when truth and
 // limits disagree, map_scale is outside 0..16 or there is nothing to draw.
 std::string encodeTrajectoriesPng(const ReportData& data);
-
-// Renders one line plot as a standalone <svg> element (720 px wide in its viewBox): axes
-// with ticks and labels, one polyline per series (a dot for a single point), a legend below.
-// `y_percent` labels the y axis in percent of the values (0.9 -> "90 %"); `reference` draws
-// dashed horizontal lines at (value, label); `y_max` > 0 fixes the top of the y axis (the data
-// may still raise it). x spans min(0, first t)..last t; y starts at 0 (lower if data are).
-struct PlotAxes {
-  std::string x_label = "time (s)";
-  std::string y_label;
-  bool y_percent = false;
-  double y_max = 0.0;
-  std::vector<std::pair<double, std::string>> reference;
-};
-std::string renderSvgPlot(const std::vector<ReportSeries>& series, const PlotAxes& axes);
 
 // Writes OUT/trajectories.png (encodeTrajectoriesPng; skipped when there is neither truth,
 // limits nor a pose) and then OUT/report.html, each atomically. OUT must exist.

@@ -1,3 +1,5 @@
+#include "sim/runner/svg_plot.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
