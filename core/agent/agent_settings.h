@@ -35,10 +35,8 @@ struct AgentSettings {
   bool bump_away = true;
   // Exploration.
   double fringe_clearance = 0.3;
-  double goal_clearance = 0.0;
   double doorway_width = 1.2;
   bool retry_frontiers = true;
-  int look_again_gain = 0;
   double visited_radius = 0.09;
   double recent_hits_s = 4.0;
   double planning_margin = 0.12;
@@ -142,11 +140,6 @@ void AgentSettings::visitAll(Self& s, Visitor&& v) {
                 "when no other frontier has a goal (0: off)",
                 0.0, 5.0},
     s.fringe_clearance);
-  v(SettingInfo{"goal_clearance", "m",
-                "frontier goals this far from anything blocked are preferred (0: the nearest "
-                "free cell)",
-                0.0, 5.0},
-    s.goal_clearance);
   v(SettingInfo{"doorway_width", "m",
                 "with fringe_clearance: uncertain cells between two obstacles at most this far "
                 "apart (a door seen obliquely) count as unseen (0: off)",
@@ -156,11 +149,6 @@ void AgentSettings::visitAll(Self& s, Visitor&& v) {
                 "frontiers whose goals failed send the robot home to share and try again next "
                 "sortie, rather than end exploration"},
     s.retry_frontiers);
-  v(SettingInfo{"look_again_gain", "",
-                "never-observed cells a reached frontier must still have to be gone to once "
-                "more, for a full turn there (0: off)",
-                0, 1000000},
-    s.look_again_gain);
   v(SettingInfo{"visited_radius", "m",
                 "the strip either side of the path driven kept free in planning (0: the robot's "
                 "radius)",

@@ -86,14 +86,8 @@ GoalChoice ExplorationGoals::choose(double now, const Pose2& odometry, const Pla
     goal_deadline_ += config_.goal_timeout_factor * M_PI / config_.route.angular_speed;
   }
   choice.route = route(choice.path, odometry);
-  if (step.look_around) {
-    // Its frontier was not seen from this goal before: a full circle there shows it.
-    if (choice.route.empty()) choice.route.push_back({odometry.translation(), false, 0.0, 0.0});
-    choice.route.back().spin = true;
-    goal_deadline_ += config_.goal_timeout_factor * 2.0 * M_PI / config_.route.angular_speed;
-  }
-  choice.event = std::string(step.look_around ? "to look around again at (" : "to frontier at (") +
-                 std::to_string(goal_.x()) + ", " + std::to_string(goal_.y()) + ")";
+  choice.event =
+      "to frontier at (" + std::to_string(goal_.x()) + ", " + std::to_string(goal_.y()) + ")";
   return choice;
 }
 

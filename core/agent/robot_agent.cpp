@@ -101,9 +101,7 @@ RobotAgent::RobotAgent(RobotInterface& robot, const AgentSetup& setup,
     m.safety_distance = s.safety_distance;
     m.slow_distance = s.slow_distance;
     m.frontiers.fringe_clearance = s.fringe_clearance;
-    m.frontiers.goal_clearance = s.goal_clearance;
     m.frontiers.doorway_width = s.doorway_width;
-    m.frontiers.look_again_gain = s.look_again_gain;
     m.retry_frontiers = s.retry_frontiers;
     m.bump_away = s.bump_away;
     m.visited_radius = s.visited_radius;

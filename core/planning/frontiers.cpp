@@ -21,10 +21,8 @@ void FrontierConfig::validate() const {
   if (max_plans < 1) bad("max_plans", "an integer >= 1", max_plans);
   if (!(claim_radius >= 0.0)) bad("claim_radius", "a number >= 0", claim_radius);
   if (!(fringe_clearance >= 0.0)) bad("fringe_clearance", "a number >= 0", fringe_clearance);
-  if (!(goal_clearance >= 0.0)) bad("goal_clearance", "a number >= 0", goal_clearance);
   if (!(doorway_width >= 0.0)) bad("doorway_width", "a number >= 0", doorway_width);
   if (!(doorway_min_width >= 0.0)) bad("doorway_min_width", "a number >= 0", doorway_min_width);
-  if (look_again_gain < 0) bad("look_again_gain", "an integer >= 0", look_again_gain);
 }
 
 namespace {
@@ -176,24 +174,17 @@ std::vector<Frontier> findFrontiers(const OccupancyGrid& grid, const PlanningMap
             ++f.gain;
       // Goal: the free cell, reachable from the robot, nearest to one of the frontier's cells
       // (nearest to the centroid among ties in distance bands of a cell).
-      // With goal_clearance, cells that far from anything blocked come first: a goal at the
-      // least clearance stands the robot a few cm from the edge of the unknown, which is where
-      // a wall the cameras cannot see (no texture) is.
       if (robot_region > 0) {
         const int s = static_cast<int>(std::ceil(config.goal_search_radius / lim.resolution));
         double best = 1e300;
-        bool best_clear = false;
         for (int jy = gy - s; jy <= gy + s; ++jy)
           for (int jx = gx - s; jx <= gx + s; ++jx) {
             if (planning.region(jx, jy) != robot_region) continue;
             const Eigen::Vector2d c = lim.cellCenter(jx, jy);
             const double d = (c - f.centroid).norm();
             if (d > config.goal_search_radius) continue;
-            const bool clear =
-                config.goal_clearance > 0.0 && planning.clearance(jx, jy) >= config.goal_clearance;
-            if ((clear && !best_clear) || (clear == best_clear && d < best)) {
+            if (d < best) {
               best = d;
-              best_clear = clear;
               f.goal = c;
               f.has_goal = true;
             }
@@ -247,38 +238,6 @@ ExploreStep FrontierExplorer::next(const OccupancyGrid& grid, const PlanningMap&
   ExploreStep step = nextWith(plain, grid, planning, robot, claimed);
   if (step.status == ExploreStatus::kDone && config_.fringe_clearance > 0.0)
     step = nextWith(config_, grid, planning, robot, claimed);
-  if (step.status != ExploreStatus::kDone || config_.look_again_gain <= 0) return step;
-  ExploreStep again = lookAgain(grid, planning, robot);
-  return again.status == ExploreStatus::kGoal ? again : step;
-}
-
-ExploreStep FrontierExplorer::lookAgain(const OccupancyGrid& grid, const PlanningMap& planning,
-                                        const Pose2& robot) {
-  ExploreStep step;
-  const std::vector<Frontier> frontiers =
-      findFrontiers(grid, planning, robot.translation(), config_);
-  step.frontiers = static_cast<int>(frontiers.size());
-  std::vector<std::pair<double, const Frontier*>> candidates;  // (utility, frontier)
-  for (const Frontier& f : frontiers) {
-    if (!f.has_goal || f.gain < config_.look_again_gain || !reached(f.goal) ||
-        near(blacklist_, f.goal, config_.blacklist_radius) ||
-        near(looked_around_, f.goal, config_.blacklist_radius))
-      continue;
-    const double d = (f.goal - robot.translation()).norm();
-    candidates.push_back({f.gain / (1.0 + config_.cost_weight * d), &f});
-  }
-  std::stable_sort(candidates.begin(), candidates.end(),
-                   [](const auto& a, const auto& b) { return a.first > b.first; });
-  for (const auto& [utility, f] : candidates) {
-    looked_around_.push_back(f->goal);  // once, whether it can be planned to or not
-    PlanResult plan = planner_.plan(planning, robot, f->goal);
-    if (!plan.solved()) continue;
-    step.status = ExploreStatus::kGoal;
-    step.frontier = *f;
-    step.plan = std::move(plan);
-    step.look_around = true;
-    return step;
-  }
   return step;
 }
 
@@ -313,12 +272,9 @@ ExploreStep FrontierExplorer::nextWith(const FrontierConfig& config, const Occup
     char buf[96];
     for (const Frontier& f : frontiers) {
       const bool seen_from_goal = f.has_goal && reached(f.goal);
-      const bool looked_around =
-          seen_from_goal && near(looked_around_, f.goal, config_.blacklist_radius);
       std::snprintf(buf, sizeof buf, " (%.1f, %.1f) %s;", f.centroid.x(), f.centroid.y(),
                     !f.has_goal      ? "no reachable goal"
                     : f.gain == 0    ? "nothing unknown near"
-                    : looked_around  ? "looked around from its goal before"
                     : seen_from_goal ? "looked from its goal before"
                                      : "goal blacklisted");
       step.reason += buf;

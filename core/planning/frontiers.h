@@ -40,18 +40,7 @@ struct FrontierConfig {
   // building's lab back door: docs/experiments/2026-12-building-settings.md). 0: off.
   double doorway_width = 0.0;
   double doorway_min_width = 0.25;  // m: narrower gaps are no way through
-  // m: a goal this far from every blocked cell (centre to centre) is preferred to a nearer
-  // one with less; 0: the nearest free cell, whatever its clearance.
-  double goal_clearance = 0.0;
-  // Never-observed cells: a frontier whose goal the robot has reached (markReached) but that
-  // still has at least this gain once no other frontier has a goal is gone to once more, to
-  // turn a full circle at its goal (ExploreStep::look_around). A robot arriving at a goal may
-  // not see its frontier from there (the mouth of a side corridor passed at its end), and
-  // without a second look exploration can end with whole corridors unseen. A mission marks
-  // its reached goals with MissionConfig::retry_frontiers (without, it blacklists them).
-  // 0: off.
-  int look_again_gain = 0;
-  void validate() const;  // throws std::invalid_argument naming the field
+  void validate() const;            // throws std::invalid_argument naming the field
 };
 
 struct Frontier {
@@ -82,9 +71,6 @@ struct ExploreStep {
   double claim_factor = 1.0;  // of the chosen one: 1 unclaimed, near 0 a teammate's goal
   std::string reason;         // why done
   int failed_left = 0;        // when done: frontiers whose goals failed or that have none
-  // The chosen frontier's goal was reached before (FrontierConfig::look_again_gain): turn a
-  // full circle there.
-  bool look_around = false;
 };
 
 // Chooses where to explore next; remembers failed goals.
@@ -96,8 +82,7 @@ class FrontierExplorer {
   // robot's radius), with its plan; kDone when no reachable frontier is left. `claimed`:
   // where teammates explore (map frame), see FrontierConfig::claim_radius. Frontiers on the
   // fringe of uncertain cells (fringe_clearance) are looked at only when no frontier on
-  // never-observed cells has a goal: near obstacles they draw the robot into bumps. Then, once
-  // each, frontiers whose goals were reached (FrontierConfig::look_again_gain).
+  // never-observed cells has a goal: near obstacles they draw the robot into bumps.
   ExploreStep next(const OccupancyGrid& grid, const PlanningMap& planning, const Pose2& robot,
                    const std::vector<Eigen::Vector2d>& claimed = {});
   // The factor by which `claimed` lowers the utility of a frontier whose goal is `goal`.
@@ -117,15 +102,12 @@ class FrontierExplorer {
   ExploreStep nextWith(const FrontierConfig& config, const OccupancyGrid& grid,
                        const PlanningMap& planning, const Pose2& robot,
                        const std::vector<Eigen::Vector2d>& claimed);
-  // The best frontier whose goal was reached but not looked around from (look_again_gain).
-  ExploreStep lookAgain(const OccupancyGrid& grid, const PlanningMap& planning, const Pose2& robot);
   static bool near(const std::vector<Eigen::Vector2d>& places, const Eigen::Vector2d& goal,
                    double radius);
   FrontierConfig config_;
   PathPlanner planner_;
   std::vector<Eigen::Vector2d> blacklist_;
   std::vector<Eigen::Vector2d> reached_;
-  std::vector<Eigen::Vector2d> looked_around_;  // goals chosen by lookAgain (planned or not)
   bool reached(const Eigen::Vector2d& goal) const;
 };
 

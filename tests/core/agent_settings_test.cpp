@@ -32,19 +32,18 @@ std::string errorOf(const std::string& yaml) {
 TEST(AgentSettingsTest, EverySettingIsReadFromYaml) {
   const AgentSettings m = read(
       "{first_sortie_budget_m: 11, safety_distance: 0.5, slow_distance: 1.1, fringe_clearance: "
-      "0.35, doorway_width: 1.1, goal_clearance: 0.4, retry_frontiers: false, floor_edge_depth: "
+      "0.35, doorway_width: 1.1, retry_frontiers: false, floor_edge_depth: "
       "1.4, beyond_support: 2, shaped_closures: false, bump_away: false, visited_radius: 0.1, "
       "max_linear_accel: 0.3, calibrate_distance_scale: true, stereo_distance_scale: true, "
       "passage_width: 1.3, odometry_distance_scale: 0.012, sortie_budget_m: 30, "
       "planning_margin: 0.2, preferred_margin: 0.25, closures: both, "
       "recent_hits_s: 8, manhattan_sigma_deg: 0.7, wall_heading_gain: 0.4, closure_scans: 12, "
-      "closure_seen_points: false, look_again_gain: 30}");
+      "closure_seen_points: false}");
   EXPECT_EQ(m.first_sortie_budget_m, 11.0);
   EXPECT_EQ(m.safety_distance, 0.5);
   EXPECT_EQ(m.slow_distance, 1.1);
   EXPECT_EQ(m.fringe_clearance, 0.35);
   EXPECT_EQ(m.doorway_width, 1.1);
-  EXPECT_EQ(m.goal_clearance, 0.4);
   EXPECT_EQ(m.retry_frontiers, false);
   EXPECT_EQ(m.floor_edge_depth, 1.4);
   EXPECT_EQ(m.beyond_support, 2);
@@ -65,7 +64,6 @@ TEST(AgentSettingsTest, EverySettingIsReadFromYaml) {
   EXPECT_EQ(m.wall_heading_gain, 0.4);
   EXPECT_EQ(m.closure_scans, 12);
   EXPECT_EQ(m.closure_seen_points, false);
-  EXPECT_EQ(m.look_again_gain, 30);
   // What a file does not name keeps its value.
   EXPECT_EQ(read("{safety_distance: 0.5}").sortie_budget_s, AgentSettings{}.sortie_budget_s);
 }
