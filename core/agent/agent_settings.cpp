@@ -96,6 +96,36 @@ bool parse(const std::string& text, T& out) {
   }
 }
 
+// Settings earlier versions had, and the value that left each off. A file naming one (a
+// recording's agent.yaml, an old settings file) reads as before when it holds that value;
+// any other value asked for something this version no longer does.
+struct RemovedSetting {
+  const char* name;
+  bool boolean;  // true: off is false; else off is 0
+};
+constexpr RemovedSetting kRemovedSettings[] = {
+    {"closure_decided_points", true}, {"post_gate_m", false},     {"track_shared_map", true},
+    {"goal_clearance", false},        {"look_again_gain", false},
+};
+
+// Whether `key` is a removed setting; fails on `field` when it is one set to anything but off.
+bool removedSetting(const std::string& key, const YamlField& field) {
+  for (const RemovedSetting& r : kRemovedSettings) {
+    if (key != r.name) continue;
+    bool flag = true;
+    double number = 1.0;
+    const bool off =
+        field.isScalar() && (r.boolean ? parse(field.asString(), flag) && !flag
+                                       : parse(field.asString(), number) && number == 0.0);
+    if (!off)
+      field.failMessage(std::string("a setting this version no longer has: only its old "
+                                    "default, ") +
+                        (r.boolean ? "false" : "0") + " (off), reads");
+    return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 std::vector<SettingInfo> agentSettingInfos() {
@@ -126,6 +156,7 @@ void readAgentSettings(const YamlField& mapping, AgentSettings& settings,
   for (const std::string& key : mapping.keys()) {
     if (std::find(other_keys.begin(), other_keys.end(), key) != other_keys.end()) continue;
     const YamlField field = mapping[key];
+    if (removedSetting(key, field)) continue;
     bool known = false;
     settings.visit([&](const SettingInfo& info, auto& value) {
       using T = std::decay_t<decltype(value)>;

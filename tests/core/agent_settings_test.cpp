@@ -68,6 +68,19 @@ TEST(AgentSettingsTest, EverySettingIsReadFromYaml) {
   EXPECT_EQ(read("{safety_distance: 0.5}").sortie_budget_s, AgentSettings{}.sortie_budget_s);
 }
 
+// A recording's agent.yaml written before a setting was removed still reads when the setting
+// held its old default (off); any other value cannot be honoured and is refused by name.
+TEST(AgentSettingsTest, RemovedSettingsReadOnlyAtTheirOldDefault) {
+  EXPECT_EQ(read("{post_gate_m: 0, track_shared_map: false, look_again_gain: 0, "
+                 "safety_distance: 0.5}")
+                .safety_distance,
+            0.5);
+  const std::string e = errorOf("{sortie_budget_m: 30, post_gate_m: 0.25}");
+  EXPECT_NE(e.find("post_gate_m"), std::string::npos) << e;
+  EXPECT_NE(e.find("no longer has"), std::string::npos) << e;
+  EXPECT_NE(errorOf("{track_shared_map: true}").find("track_shared_map"), std::string::npos);
+}
+
 TEST(AgentSettingsTest, WrittenSettingsReadBackExactly) {
   AgentSettings s;
   s.odometry_distance_scale = 0.01 / 3.0;  // no short decimal
