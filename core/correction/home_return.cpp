@@ -174,9 +174,10 @@ HomeReturn localizeFromLog(const TraverseLog& log, const HomeBase& home, double 
   // 1. The paper's fix. The whole turn: where is the home base, roughly? Then only the
   // scans facing it (a few seconds of turning: little drift among them), corners refitted.
   const OccupancyGrid whole = localMap(log, turn, limits);
-  const CornerDetector whole_detector(classifyCells(whole), corners);
-  const HomeBaseFix rough = findHomeBase(whole_detector, home, at_turn, center, config.local_radius,
-                                         config.max_separation_error);
+  const std::vector<Corner> whole_corners =
+      CornerDetector(classifyCells(whole), corners).findAll().corners;
+  const HomeBaseFix rough = findHomeBase(whole_corners, config.resolution, home, at_turn, center,
+                                         config.local_radius, config.max_separation_error);
   HomeBaseFix fix = rough;
   auto plausible = [&](const Pose2& correction) {
     return std::abs(correction.theta) <= config.max_correction_rad &&
@@ -261,10 +262,8 @@ HomeReturn localizeFromLog(const TraverseLog& log, const HomeBase& home, double 
     // every heading and position stands in when no such placement aligns.
     auto cornerGuesses = [&] {
       std::vector<Pose2> guesses;
-      for (const Corner& c : whole_detector.findAll().corners) {
-        const Pose2 rotate(0.0, 0.0, wrapAngle(home.first.heading - c.heading));
-        const Eigen::Vector2d t = home.first.position - rotate * c.position;
-        const Pose2 g(t.x(), t.y(), rotate.theta);
+      for (const Corner& c : whole_corners) {
+        const Pose2 g = placementOnCorner(c, home.first);
         if (plausible(g) &&
             ((g * at_turn).translation() - start.translation()).norm() <= config.search_radius)
           guesses.push_back(g);

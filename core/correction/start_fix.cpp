@@ -107,14 +107,6 @@ std::vector<std::vector<size_t>> turnArcs(const TraverseLog& log, const std::vec
   return out;
 }
 
-// The placement X_MO that puts the observed corner `seen` (odometry frame) on `designed`.
-Pose2 placing(const Corner& seen, const Corner& designed) {
-  const double turn = wrapAngle(designed.heading - seen.heading);
-  const Pose2 rotate(0.0, 0.0, turn);
-  const Eigen::Vector2d t = designed.position - rotate * seen.position;
-  return Pose2(t.x(), t.y(), turn);
-}
-
 }  // namespace
 
 OccupancyGrid homeBaseModelGrid(const HomeBaseDesign& design, double resolution,
@@ -218,7 +210,7 @@ StartFix localizeStart(const TraverseLog& log, const HomeBaseDesign& design,
       if ((c.position - center).norm() > config.local_radius) continue;
       ++found;
       for (const Corner* designed : {&visible.first, &visible.second}) {
-        const Pose2 guess = placing(c, *designed);
+        const Pose2 guess = placementOnCorner(c, *designed);
         // The same corner found in the whole turn and in an arc aligns the same way.
         if (std::any_of(tried.begin(), tried.end(), [&](const Pose2& t) {
               return (t.translation() - guess.translation()).norm() < 1e-4 &&

@@ -112,12 +112,11 @@ HomeBaseFix localizeAtHomeBase(const CornerDetector& detector, const HomeBase& h
                         detector.limits().resolution, max_separation_error);
 }
 
-HomeBaseFix findHomeBase(const CornerDetector& detector, const HomeBase& home,
-                         const Pose2& odometry, const Eigen::Vector2d& center, double radius,
-                         double max_separation_error) {
-  const CornerSearch all = detector.findAll();
+HomeBaseFix findHomeBase(const std::vector<Corner>& corners, double resolution,
+                         const HomeBase& home, const Pose2& odometry, const Eigen::Vector2d& center,
+                         double radius, double max_separation_error) {
   std::vector<Corner> near;
-  for (const Corner& c : all.corners)
+  for (const Corner& c : corners)
     if ((c.position - center).norm() <= radius) near.push_back(c);
   const Eigen::Vector2d reg = home.second.position - home.first.position;
   const double reg_angle = std::atan2(reg.y(), reg.x());
@@ -150,8 +149,13 @@ HomeBaseFix findHomeBase(const CornerDetector& detector, const HomeBase& home,
         near.size() < 2 ? HomeBaseStatus::kCornerNotFound : HomeBaseStatus::kGeometryMismatch;
     return none;
   }
-  return fixFromCorners(home, *best_a, *best_b, odometry, detector.limits().resolution,
-                        max_separation_error);
+  return fixFromCorners(home, *best_a, *best_b, odometry, resolution, max_separation_error);
+}
+
+Pose2 placementOnCorner(const Corner& seen, const Corner& designed) {
+  const double turn = wrapAngle(designed.heading - seen.heading);
+  const Eigen::Vector2d t = designed.position - Pose2(0.0, 0.0, turn) * seen.position;
+  return Pose2(t.x(), t.y(), turn);
 }
 
 }  // namespace coopmap

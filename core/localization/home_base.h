@@ -75,12 +75,16 @@ HomeBaseFix localizeAtHomeBase(const CornerDetector& detector, const HomeBase& h
                                const Pose2& odometry, double search_radius,
                                double max_separation_error = 0.1, const Pose2& guess = {});
 
-// Localizes against the home base when odometry may be far off: every corner within
-// `radius` of `center` (odometry frame, m) is a candidate, and the pair whose separation
-// and headings relative to the line joining them match the registered corners best is
-// taken as the home base.
-HomeBaseFix findHomeBase(const CornerDetector& detector, const HomeBase& home,
-                         const Pose2& odometry, const Eigen::Vector2d& center, double radius,
-                         double max_separation_error = 0.1);
+// Localizes against the home base when odometry may be far off: every corner of `corners`
+// (found in a grid of `resolution` m) within `radius` of `center` (odometry frame, m) is a
+// candidate, and the pair whose separation and headings relative to the line joining them
+// match the registered corners best is taken as the home base.
+HomeBaseFix findHomeBase(const std::vector<Corner>& corners, double resolution,
+                         const HomeBase& home, const Pose2& odometry, const Eigen::Vector2d& center,
+                         double radius, double max_separation_error = 0.1);
+
+// The placement X_MO that puts the corner `seen` (odometry frame) on `designed` (map frame):
+// vertex on vertex, heading on heading.
+Pose2 placementOnCorner(const Corner& seen, const Corner& designed);
 
 }  // namespace coopmap
