@@ -5,6 +5,8 @@
 #pragma once
 
 #include <cstdint>
+#include <random>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -104,5 +106,35 @@ std::string worldYaml(const Building& b, const std::string& header, const std::s
 
 // A number as the world files write it: at most 3 decimals, no trailing zeros.
 std::string num(double v);
+
+// Uniform draws from std::mt19937_64 words, the same on every platform.
+class Draw {
+ public:
+  explicit Draw(uint64_t seed) : engine_(seed) {}
+  double uniform(double a, double b) {
+    return a + (b - a) * static_cast<double>(engine_() >> 11) * 0x1.0p-53;
+  }
+  int integer(int a, int b) {  // in [a, b]
+    if (b < a) throw std::logic_error("world generator: empty range drawn");
+    return a + static_cast<int>(engine_() % static_cast<uint64_t>(b - a + 1));
+  }
+  bool chance(double p) { return uniform(0.0, 1.0) < p; }
+
+ private:
+  std::mt19937_64 engine_;
+};
+
+// What stands in the building once its zones and doors are laid out
+// (generated_contents.cpp), each drawn from `d` in this order:
+// the home base and the robots in the start room (false: the room has no place for them)...
+bool placeStart(Building& b, Draw& d);
+// ... then the places furniture keeps clear of (doorways, the home base, the starts) ...
+std::vector<Box2> keepOuts(const Building& b);
+// ... furniture in a room ...
+void furnishRoom(Building& b, const Rect& room, const std::vector<Box2>& keep_out, Draw& d);
+// ... furniture islands and partitions in the open plan ...
+void furnishOpenPlan(Building& b, const std::vector<Box2>& keep_out, Draw& d);
+// ... and, after the walls, people walking and slippery floor patches.
+void addPeopleAndPatches(Building& b, Draw& d);
 
 }  // namespace coopmap::sim::generated
