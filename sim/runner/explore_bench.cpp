@@ -204,6 +204,17 @@ void readExploreMetrics(const std::string& text, const std::string& file, Explor
     if (const auto mission = robot.get("mission"))
       if (const auto event = mission->get("last_event")) e.reason = event->asString();
     row.endings.push_back(e);
+    if (const auto phases = robot.get("phases"))
+      for (const std::string& phase : phases->keys()) {
+        const YamlField p = (*phases)[phase];
+        auto in = std::find_if(row.phases.begin(), row.phases.end(),
+                               [&](const PhaseTime& t) { return t.phase == phase; });
+        if (in == row.phases.end()) in = row.phases.insert(row.phases.end(), PhaseTime{phase});
+        in->time_s += p["time_s"].asDouble(0.0, 1e12, "seconds");
+        in->driving_s += p["driving_s"].asDouble(0.0, 1e12, "seconds");
+        in->turning_s += p["turning_s"].asDouble(0.0, 1e12, "seconds");
+        in->path_m += p["path_m"].asDouble(0.0, 1e12, "metres");
+      }
   }
 }
 
@@ -307,6 +318,33 @@ std::string formatExploreMarkdown(const ExploreBenchOptions& o,
      << "| no robot ends \"exploration complete\" with more than "
      << number(100.0 * kUnseenAtCompletion, 0) << " % of the floor unseen | " << meet_completion
      << " |\n";
+
+  // Where the robots' time went, over every run that finished.
+  std::vector<PhaseTime> phases;
+  double robot_time = 0.0;
+  for (const ExploreRow* r : ran)
+    for (const PhaseTime& p : r->phases) {
+      auto in = std::find_if(phases.begin(), phases.end(),
+                             [&](const PhaseTime& t) { return t.phase == p.phase; });
+      if (in == phases.end()) in = phases.insert(phases.end(), PhaseTime{p.phase});
+      in->time_s += p.time_s;
+      in->driving_s += p.driving_s;
+      in->turning_s += p.turning_s;
+      in->path_m += p.path_m;
+      robot_time += p.time_s;
+    }
+  if (robot_time > 0.0) {
+    auto share = [&](double s) { return number(100.0 * s / robot_time, 1) + " %"; };
+    md << "\n## Where the robots' time went\n\n"
+       << "Shares of all robots' time in all runs; driving and turning in place from the "
+          "robots' true motion.\n\n"
+       << "| phase | time | driving | turning in place | standing | path (m) |\n"
+          "|---|---|---|---|---|---|\n";
+    for (const PhaseTime& p : phases)
+      md << "| " << p.phase << " | " << share(p.time_s) << " | " << share(p.driving_s) << " | "
+         << share(p.turning_s) << " | " << share(p.time_s - p.driving_s - p.turning_s) << " | "
+         << number(p.path_m, 0) << " |\n";
+  }
 
   std::vector<const ExploreRow*> worst = ran;
   std::stable_sort(worst.begin(), worst.end(), [](const ExploreRow* a, const ExploreRow* b) {

@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "sim/runner/phase_time.h"
+
 namespace coopmap {
 
 // The processors of this machine (at least 1): the default number of children at once.
@@ -55,8 +57,9 @@ struct ExploreRow {
   int contacts = 0;  // contacts of all robots
   std::vector<ExploreEnding> endings;
   bool exploration_complete = false;
-  double wall_time_s = 0.0;  // the child's, start to exit
-  std::string map_picture;   // the scored map's picture, relative to the output folder
+  double wall_time_s = 0.0;       // the child's, start to exit
+  std::string map_picture;        // the scored map's picture, relative to the output folder
+  std::vector<PhaseTime> phases;  // all robots' together, by phase (first entered first)
 };
 
 struct ExploreBenchResult {
@@ -70,15 +73,17 @@ struct ExploreBenchResult {
 ExploreBenchResult runExploreBench(const ExploreBenchOptions& options);
 
 // A finished child's row fields from its metrics.json text (`file` names it in messages):
-// the scores, contacts, endings, exploration_complete and map_picture. Throws ConfigError
+// the scores, contacts, endings, exploration_complete, map_picture and the phases' times
+// (when the file has them). Throws ConfigError
 // when a key it needs is missing or malformed.
 void readExploreMetrics(const std::string& text, const std::string& file, ExploreRow& row);
 
 // The CSV text of the rows (header first); free text quoted, inner quotes doubled.
 std::string formatExploreCsv(const std::vector<ExploreRow>& rows);
 
-// explore.md: the distribution over the worlds that ran, how many meet each target, and the
-// five worlds of least coverage with links to their map pictures.
+// explore.md: the distribution over the worlds that ran, how many meet each target, where
+// the robots' time went (phase by phase), and the five worlds of least coverage with links to
+// their map pictures.
 std::string formatExploreMarkdown(const ExploreBenchOptions& options,
                                   const std::vector<ExploreRow>& rows);
 

@@ -32,12 +32,24 @@ void RunScoring::observeStep(size_t k, double t, const Pose2& true_pose, const P
   r.estimate.push_back({t, agent.estimate()});
 }
 
-void RunScoring::observeMotion(size_t k, const Pose2& true_pose,
+void RunScoring::observeMotion(size_t k, double dt, const Pose2& true_pose,
                                const std::vector<sim::ContactEvent>& log,
                                const std::string& phase) {
+  constexpr double kDriving = 0.03, kTurning = 0.05;  // m/s, rad/s
   Robot& r = robots_[k];
-  r.path_length_m += std::hypot(true_pose.x - r.last_true.x, true_pose.y - r.last_true.y);
+  const double step = std::hypot(true_pose.x - r.last_true.x, true_pose.y - r.last_true.y);
+  const double turn = std::abs(wrapAngle(true_pose.theta - r.last_true.theta));
+  r.path_length_m += step;
   r.last_true = true_pose;
+  auto in = std::find_if(r.phases.begin(), r.phases.end(),
+                         [&](const PhaseTime& p) { return p.phase == phase; });
+  if (in == r.phases.end()) in = r.phases.insert(r.phases.end(), PhaseTime{phase});
+  in->time_s += dt;
+  in->path_m += step;
+  if (step > kDriving * dt)
+    in->driving_s += dt;
+  else if (turn > kTurning * dt)
+    in->turning_s += dt;
   const Pose2 X_MW = X_WM_[k].inverse();
   for (size_t c = r.contacts.size(); c < log.size(); ++c)
     r.contacts.push_back(
@@ -86,6 +98,7 @@ RobotRunResult RunScoring::robotResult(size_t k, const RobotAgent& agent) const 
   out.name = agent.name();
   out.path_length_m = r.path_length_m;
   out.contacts = r.contacts;
+  out.phases = r.phases;
   out.frames = agent.frames();
   out.route_complete = agent.done();
   out.groundtruth = r.groundtruth;

@@ -23,10 +23,10 @@ class RunScoring {
   // After robot k's step at time t: its true pose (world) and odometry, and its agent.
   void observeStep(size_t k, double t, const Pose2& true_pose, const Pose2& odometry,
                    const RobotAgent& agent);
-  // After a physics step: robot k's true pose (world), the simulator's contact log, and what
-  // its agent was doing.
-  void observeMotion(size_t k, const Pose2& true_pose, const std::vector<sim::ContactEvent>& log,
-                     const std::string& phase);
+  // After a physics step of dt s: robot k's true pose (world), the simulator's contact log,
+  // and what its agent was doing.
+  void observeMotion(size_t k, double dt, const Pose2& true_pose,
+                     const std::vector<sim::ContactEvent>& log, const std::string& phase);
   // A timeline sample when one is due (or `last`: at the end, unless there is one for t).
   void sample(double t, const std::vector<const RobotAgent*>& agents, const LocalSharedMap* live,
               bool last = false);
@@ -42,6 +42,7 @@ class RunScoring {
   struct Robot {
     std::vector<StampedPose2> groundtruth, odometry, estimate;
     std::vector<ContactRecord> contacts;
+    std::vector<PhaseTime> phases;
     double path_length_m = 0.0;
     Pose2 last_true;
     bool moved = false;

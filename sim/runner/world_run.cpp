@@ -317,7 +317,8 @@ RunResult runWorld(const RunOptions& opt) {
     result.timing.physics_s += seconds(physics_start, Clock::now());
     for (size_t k = 0; k < slots.size(); ++k) {
       const int i = slots[k].robot->index();
-      scoring.observeMotion(k, sim.truePose(i), sim.contactLog(i), slots[k].agent->phase());
+      scoring.observeMotion(k, control_dt, sim.truePose(i), sim.contactLog(i),
+                            slots[k].agent->phase());
     }
   }
   if (progress) std::fprintf(stderr, "\n");

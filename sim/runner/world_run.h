@@ -25,6 +25,7 @@
 #include "core/mapping/occupancy_grid.h"
 #include "core/robot/robot_interface.h"
 #include "core/sharing/shared_map.h"
+#include "sim/runner/phase_time.h"
 
 namespace coopmap {
 
@@ -101,6 +102,7 @@ struct RobotRunResult {
   int collisions_people = 0;  // with people
   int collisions_robots = 0;  // with other robots
   std::vector<ContactRecord> contacts;
+  std::vector<PhaseTime> phases;  // in the order first entered
   int frames = 0;
   bool route_complete = false;
   double odometry_error_m = 0.0;  // final |odometry - truth|, both in the odometry frame

@@ -140,6 +140,14 @@ void writeRunOutputs(const std::string& dir, const RunResult& result) {
       j.endObject();
       j.endObject();
     }
+    j.beginObject("phases");
+    for (const PhaseTime& p : r.phases) {
+      j.beginObject(p.phase);
+      j.value("time_s", p.time_s).value("driving_s", p.driving_s);
+      j.value("turning_s", p.turning_s).value("path_m", p.path_m);
+      j.endObject();
+    }
+    j.endObject();
     j.beginArray("contacts");
     for (const ContactRecord& c : r.contacts) {
       j.beginObject();

@@ -33,12 +33,19 @@ const char* kCooperativeMetrics = R"({
     "jose": {
       "phase": "done",
       "mission": {"last_event": "home: \"nothing left\", done"},
+      "phases": {
+        "look at home": {"time_s": 30, "driving_s": 0, "turning_s": 28, "path_m": 0.1},
+        "explore": {"time_s": 100, "driving_s": 60, "turning_s": 30, "path_m": 18}
+      },
       "contacts": [{"t": 12.5, "with": "person"}],
       "map": {"wall_recall": 0.5, "false_occupied_rate": 0.2, "coverage": 0.4}
     },
     "eric": {
       "phase": "returning",
       "mission": {"last_event": "budget spent"},
+      "phases": {
+        "explore": {"time_s": 120, "driving_s": 70, "turning_s": 40, "path_m": 20}
+      },
       "contacts": [],
       "map": {"wall_recall": 0.6, "false_occupied_rate": 0.1, "coverage": 0.3}
     }
@@ -63,6 +70,30 @@ TEST(ExploreBenchTest, ReadsTheSharedMapOfACooperativeRun) {
   EXPECT_EQ(row.endings[0].reason, "home: \"nothing left\", done");
   EXPECT_EQ(row.endings[1].robot, "eric");
   EXPECT_EQ(row.endings[1].phase, "returning");
+  // Both robots' phase times, summed by phase in the order first met.
+  ASSERT_EQ(row.phases.size(), 2u);
+  EXPECT_EQ(row.phases[0].phase, "look at home");
+  EXPECT_DOUBLE_EQ(row.phases[0].turning_s, 28.0);
+  EXPECT_EQ(row.phases[1].phase, "explore");
+  EXPECT_DOUBLE_EQ(row.phases[1].time_s, 220.0);
+  EXPECT_DOUBLE_EQ(row.phases[1].driving_s, 130.0);
+  EXPECT_DOUBLE_EQ(row.phases[1].turning_s, 70.0);
+  EXPECT_DOUBLE_EQ(row.phases[1].path_m, 38.0);
+}
+
+TEST(ExploreBenchTest, SaysWhereTheRobotsTimeWent) {
+  ExploreBenchOptions o;
+  o.out_dir = "out";
+  ExploreRow a, b;
+  a.seed = 1;
+  b.seed = 2;
+  a.phases = {{"explore", 300.0, 200.0, 90.0, 60.0}, {"return", 100.0, 80.0, 20.0, 24.0}};
+  b.phases = {{"explore", 100.0, 50.0, 40.0, 15.0}};
+  const std::string md = formatExploreMarkdown(o, {a, b});
+  // 500 s of robot time: explore 400 s (250 driving, 130 turning, 20 standing).
+  EXPECT_NE(md.find("| explore | 80.0 % | 50.0 % | 26.0 % | 4.0 % | 75 |"), std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| return | 20.0 % | 16.0 % | 4.0 % | 0.0 % | 24 |"), std::string::npos) << md;
 }
 
 TEST(ExploreBenchTest, ReadsTheRobotsOwnMapWithoutASharedOne) {

@@ -93,6 +93,37 @@ TEST(ExploreScenarioTest, TheModelsCalibrationAndTheRunsSettingsApply) {
   }
 }
 
+// Where a run's time went: every physics step is in one phase of the agent, and the motion
+// measured against the truth says what the robot did there (a look is a turn in place).
+TEST(ExploreScenarioTest, PhaseTimesAccountForTheWholeRun) {
+  RunOptions o;
+  o.world_file = std::string(COOPMAP_SOURCE_DIR) + "/worlds/lab.yaml";
+  o.robots = 1;
+  o.explore = true;
+  o.duration = 150.0;
+  const RunResult r = runWorld(o);
+  const RobotRunResult& jose = r.robots[0];
+  double time = 0.0, path = 0.0;
+  const PhaseTime* look = nullptr;
+  const PhaseTime* explore = nullptr;
+  for (const PhaseTime& p : jose.phases) {
+    time += p.time_s;
+    path += p.path_m;
+    EXPECT_LE(p.driving_s + p.turning_s, p.time_s + 1e-9) << p.phase;
+    if (p.phase == "look at home") look = &p;
+    if (p.phase == "explore") explore = &p;
+  }
+  EXPECT_NEAR(time, r.sim_time_s, 0.1);
+  EXPECT_NEAR(path, jose.path_length_m, 1e-6);
+  ASSERT_NE(look, nullptr);
+  ASSERT_NE(explore, nullptr);
+  EXPECT_EQ(jose.phases.front().phase, "look at home");  // the first thing a robot does
+  EXPECT_GT(look->turning_s, 0.6 * look->time_s);        // a look is a turn in place
+  EXPECT_LT(look->path_m, 1.0);
+  EXPECT_GT(explore->driving_s, 0.3 * explore->time_s);
+  EXPECT_GT(explore->path_m, 5.0);
+}
+
 // One robot exploring the building (seed 1) for `duration` seconds.
 RunOptions buildingExplorer(double duration) {
   RunOptions o;
