@@ -207,13 +207,10 @@ void readExploreMetrics(const std::string& text, const std::string& file, Explor
     if (const auto phases = robot.get("phases"))
       for (const std::string& phase : phases->keys()) {
         const YamlField p = (*phases)[phase];
-        auto in = std::find_if(row.phases.begin(), row.phases.end(),
-                               [&](const PhaseTime& t) { return t.phase == phase; });
-        if (in == row.phases.end()) in = row.phases.insert(row.phases.end(), PhaseTime{phase});
-        in->time_s += p["time_s"].asDouble(0.0, 1e12, "seconds");
-        in->driving_s += p["driving_s"].asDouble(0.0, 1e12, "seconds");
-        in->turning_s += p["turning_s"].asDouble(0.0, 1e12, "seconds");
-        in->path_m += p["path_m"].asDouble(0.0, 1e12, "metres");
+        phaseNamed(row.phases, phase) += {phase, p["time_s"].asDouble(0.0, 1e12, "seconds"),
+                                          p["driving_s"].asDouble(0.0, 1e12, "seconds"),
+                                          p["turning_s"].asDouble(0.0, 1e12, "seconds"),
+                                          p["path_m"].asDouble(0.0, 1e12, "metres")};
       }
   }
 }
@@ -324,13 +321,7 @@ std::string formatExploreMarkdown(const ExploreBenchOptions& o,
   double robot_time = 0.0;
   for (const ExploreRow* r : ran)
     for (const PhaseTime& p : r->phases) {
-      auto in = std::find_if(phases.begin(), phases.end(),
-                             [&](const PhaseTime& t) { return t.phase == p.phase; });
-      if (in == phases.end()) in = phases.insert(phases.end(), PhaseTime{p.phase});
-      in->time_s += p.time_s;
-      in->driving_s += p.driving_s;
-      in->turning_s += p.turning_s;
-      in->path_m += p.path_m;
+      phaseNamed(phases, p.phase) += p;
       robot_time += p.time_s;
     }
   if (robot_time > 0.0) {

@@ -41,15 +41,13 @@ void RunScoring::observeMotion(size_t k, double dt, const Pose2& true_pose,
   const double turn = std::abs(wrapAngle(true_pose.theta - r.last_true.theta));
   r.path_length_m += step;
   r.last_true = true_pose;
-  auto in = std::find_if(r.phases.begin(), r.phases.end(),
-                         [&](const PhaseTime& p) { return p.phase == phase; });
-  if (in == r.phases.end()) in = r.phases.insert(r.phases.end(), PhaseTime{phase});
-  in->time_s += dt;
-  in->path_m += step;
+  PhaseTime& in = phaseNamed(r.phases, phase);
+  in.time_s += dt;
+  in.path_m += step;
   if (step > kDriving * dt)
-    in->driving_s += dt;
+    in.driving_s += dt;
   else if (turn > kTurning * dt)
-    in->turning_s += dt;
+    in.turning_s += dt;
   const Pose2 X_MW = X_WM_[k].inverse();
   for (size_t c = r.contacts.size(); c < log.size(); ++c)
     r.contacts.push_back(

@@ -75,7 +75,10 @@ TEST(RflexRobotTest, ClampsVelocityToTheDescriptionsLimits) {
   EmulatedRflexRobot r;
   r.command({5.0, -9.0});
   const RobotDescription& d = r.description();
-  ASSERT_TRUE(eventually([&] { return r.emulator().targetLinear() > 0.0; }));
+  // Each axis is its own rFLEX packet, taken by the emulator's thread one after the other:
+  // wait for both (the sanitizer build once read the rotation before its packet landed).
+  ASSERT_TRUE(eventually(
+      [&] { return r.emulator().targetLinear() > 0.0 && r.emulator().targetAngular() < 0.0; }));
   EXPECT_NEAR(r.emulator().targetLinear(), d.max_linear_speed, 1e-4);
   EXPECT_NEAR(r.emulator().targetAngular(), -d.max_angular_speed, 1e-4);
   r.command(MotionCommand::stop());
