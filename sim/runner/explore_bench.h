@@ -74,8 +74,7 @@ ExploreBenchResult runExploreBench(const ExploreBenchOptions& options);
 
 // A finished child's row fields from its metrics.json text (`file` names it in messages):
 // the scores, contacts, endings, exploration_complete, map_picture and the phases' times
-// (when the file has them). Throws ConfigError
-// when a key it needs is missing or malformed.
+// (when the file has them). Throws ConfigError when a key it needs is missing or malformed.
 void readExploreMetrics(const std::string& text, const std::string& file, ExploreRow& row);
 
 // The CSV text of the rows (header first); free text quoted, inner quotes doubled.
