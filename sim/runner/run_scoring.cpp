@@ -39,7 +39,6 @@ void RunScoring::observeMotion(size_t k, double dt, const Pose2& true_pose,
   Robot& r = robots_[k];
   const double step = std::hypot(true_pose.x - r.last_true.x, true_pose.y - r.last_true.y);
   const double turn = std::abs(wrapAngle(true_pose.theta - r.last_true.theta));
-  r.path_length_m += step;
   r.last_true = true_pose;
   PhaseTime& in = phaseNamed(r.phases, phase);
   in.time_s += dt;
@@ -94,7 +93,7 @@ RobotRunResult RunScoring::robotResult(size_t k, const RobotAgent& agent) const 
   const Robot& r = robots_[k];
   RobotRunResult out;
   out.name = agent.name();
-  out.path_length_m = r.path_length_m;
+  for (const PhaseTime& p : r.phases) out.path_length_m += p.path_m;  // every step is in one
   out.contacts = r.contacts;
   out.phases = r.phases;
   out.frames = agent.frames();

@@ -43,7 +43,6 @@ class RunScoring {
     std::vector<StampedPose2> groundtruth, odometry, estimate;
     std::vector<ContactRecord> contacts;
     std::vector<PhaseTime> phases;
-    double path_length_m = 0.0;
     Pose2 last_true;
     bool moved = false;
   };

@@ -21,6 +21,7 @@ namespace {
 using mission_test::freeAhead;
 using mission_test::lookedAround;
 using mission_test::quickFirstSortie;
+using mission_test::quickLooks;
 
 TEST(MissionTest, StopsForGoodAfterTooManyBumpsInASortie) {
   const Pose2 home(2.0, 3.0, 0.0);
@@ -178,9 +179,7 @@ TEST(MissionTest, GoesHomeToShareWhenTheFrontiersLeftAreTeammates) {
 TEST(MissionTest, EndsWhenEveryFrontierWasLookedAtFromItsGoal) {
   const Pose2 home(2.0, 3.0, 0.0);
   const OccupancyGrid map = lookedAround(Pose2(1.0, 3.0, 0.0));
-  MissionConfig c;
-  c.look_wait_s = 0.2;
-  c.look_turn_rate = 3.0;
+  MissionConfig c = quickLooks();
   c.retry_frontiers = true;  // reached goals are remembered (FrontierExplorer::markReached)
   c.planner.seed = 3;
   MissionAgent mission(home, c);
@@ -210,9 +209,7 @@ TEST(MissionTest, FrontiersLeftButOutOfReachThisSortieAreTriedAgainNextSortie) {
   // are goals again. Goals reached and looked from are not: the robot saw what it could.
   const Pose2 home(2.0, 3.0, 0.0);
   const OccupancyGrid map = lookedAround(Pose2(1.0, 3.0, 0.0));
-  MissionConfig c;
-  c.look_wait_s = 0.2;
-  c.look_turn_rate = 3.0;
+  MissionConfig c = quickLooks();
   c.budget_m = 1000.0;
   c.budget_s = 1e5;
   c.max_sorties = 2;
@@ -266,9 +263,7 @@ TEST(MissionTest, WaitsForATeammateConvergingFromTheSide) {
   const Pose2 home(2.0, 3.0, 0.0);
   const OccupancyGrid map = lookedAround(Pose2(1.0, 3.0, 0.0));
   auto closest = [&](bool priority, int* stops) {
-    MissionConfig c;
-    c.look_wait_s = 0.2;
-    c.look_turn_rate = 3.0;
+    MissionConfig c = quickLooks();
     c.planner.seed = 4;
     MissionAgent mission(home, c);
     mission.startFrom(home, 0.0);  // the odometry frame is the map frame
@@ -316,9 +311,7 @@ TEST(MissionTest, SlowsDownForWhatIsNearAhead) {
   // slow_distance (1 m), halves the speed; once it is gone, the robot speeds up again.
   const Pose2 home(2.0, 3.0, 0.0);
   const OccupancyGrid map = lookedAround(Pose2(1.0, 3.0, 0.0));
-  MissionConfig c;
-  c.look_wait_s = 0.2;
-  c.look_turn_rate = 3.0;
+  MissionConfig c = quickLooks();
   c.safety_distance = 0.3;
   c.slow_distance = 1.0;
   c.planner.seed = 4;
@@ -355,9 +348,7 @@ TEST(MissionTest, SpeedsUpNoFasterThanItsAccelerationLimitAndStopsAtOnce) {
   auto run = [](double accel) {
     const Pose2 home(2.0, 3.0, 0.0);
     const OccupancyGrid map = lookedAround(Pose2(1.0, 3.0, 0.0));
-    MissionConfig c;
-    c.look_wait_s = 0.2;
-    c.look_turn_rate = 3.0;
+    MissionConfig c = quickLooks();
     c.planner.seed = 4;
     c.max_linear_accel = accel;
     MissionAgent mission(home, c);

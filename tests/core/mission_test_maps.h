@@ -33,12 +33,18 @@ inline OccupancyGrid lookedAround(const Pose2& at) {
   return map;
 }
 
-// Quick looks at home and a first sortie that ends after 0.5 m, of two sorties: the tests
-// below carry the robot elsewhere as it sets off, and watch its way home.
-inline MissionConfig quickFirstSortie() {
+// Quick looks at home (a short wait, a fast turn): the tests are about what comes after.
+inline MissionConfig quickLooks() {
   MissionConfig c;
   c.look_wait_s = 0.2;
   c.look_turn_rate = 3.0;
+  return c;
+}
+
+// Quick looks at home and a first sortie that ends after 0.5 m, of two sorties: the tests
+// below carry the robot elsewhere as it sets off, and watch its way home.
+inline MissionConfig quickFirstSortie() {
+  MissionConfig c = quickLooks();
   c.first_budget_m = 0.5;
   c.max_sorties = 2;
   c.planner.seed = 5;
