@@ -99,6 +99,11 @@ ExploreBenchCommand::ExploreBenchCommand(CLI::App& bench)
       ->check(kSeed)
       ->capture_default_str();
   cmd->add_option("--count", options_.count, "Number of worlds")->capture_default_str();
+  cmd->add_option("--run-seed-offset", options_.run_seed_offset,
+                  "Each world's run takes the seed world seed + this (0: the world's own): "
+                  "the same worlds again with other camera and odometry noise and people's "
+                  "walks, to measure how far the scores move from run to run")
+      ->capture_default_str();
   cmd->add_option("--robots", options_.robots, "Robots exploring: 1 or 2")->capture_default_str();
   cmd->add_option("--duration", options_.duration, "Simulated seconds per world at most")
       ->capture_default_str();

@@ -114,6 +114,7 @@ std::string seconds(double v) {
 ExploreRow runOne(const ExploreBenchOptions& o, uint64_t seed, std::mutex& generate_mutex) {
   ExploreRow row;
   row.seed = seed;
+  row.run_seed = seed + o.run_seed_offset;
   row.robots = o.robots;
   const std::string name = std::to_string(seed);
   const std::string world_file = o.out_dir + "/worlds/world_" + name + ".yaml";
@@ -143,8 +144,9 @@ ExploreRow runOne(const ExploreBenchOptions& o, uint64_t seed, std::mutex& gener
     std::ofstream(log) << "world generation: " << e.what() << "\n";
     return fail(std::string("world generation: ") + e.what());
   }
+  const std::string run_seed = std::to_string(row.run_seed);
   std::vector<std::string> args = {
-      o.program,           "run",       world_file, "--seed", name,   "--duration",
+      o.program,           "run",       world_file, "--seed", run_seed, "--duration",
       seconds(o.duration), "--explore", "--quiet",  "--out",  run_dir};
   if (o.robots == 1) args.insert(args.end(), {"--robots", "1"});
   using Clock = std::chrono::steady_clock;
@@ -169,6 +171,12 @@ void ExploreBenchOptions::validate() const {
   if (count < 1) throw ConfigError("--count: expected at least 1, got " + std::to_string(count));
   if (static_cast<uint64_t>(count - 1) > std::numeric_limits<uint64_t>::max() - first_seed)
     throw ConfigError("--count: seeds from --first-seed " + std::to_string(first_seed) +
+                      " would pass 18446744073709551615");
+  if (first_seed + static_cast<uint64_t>(count - 1) >
+      std::numeric_limits<uint64_t>::max() - run_seed_offset)
+    throw ConfigError("--run-seed-offset: " + std::to_string(run_seed_offset) +
+                      " added to seeds up to " +
+                      std::to_string(first_seed + static_cast<uint64_t>(count - 1)) +
                       " would pass 18446744073709551615");
   if (robots != 1 && robots != 2)
     throw ConfigError("--robots: expected 1 or 2, got " + std::to_string(robots));
@@ -236,12 +244,13 @@ std::string formatExploreCsv(const std::vector<ExploreRow>& rows) {
   for (const ExploreRow& r : rows)
     max_robots = std::max({max_robots, r.robots, static_cast<int>(r.endings.size())});
   std::ostringstream csv;
-  csv << "seed,family,floor_area_m2,robots,coverage,time_to_50_s,time_to_90_s,wall_recall,"
-         "false_occupied_rate,contacts";
+  csv << "seed,run_seed,family,floor_area_m2,robots,coverage,time_to_50_s,time_to_90_s,"
+         "wall_recall,false_occupied_rate,contacts";
   for (int i = 1; i <= max_robots; ++i) csv << ",robot" << i << ",ending" << i << ",reason" << i;
   csv << ",exploration_complete,wall_time_s\n";
   for (const ExploreRow& r : rows) {
-    csv << r.seed << "," << r.family << "," << number(r.floor_area_m2, 1) << "," << r.robots;
+    csv << r.seed << "," << r.run_seed << "," << r.family << "," << number(r.floor_area_m2, 1)
+        << "," << r.robots;
     if (r.failed)  // no scores
       csv << ",,,,,,";
     else
@@ -293,7 +302,10 @@ std::string formatExploreMarkdown(const ExploreBenchOptions& o,
      << rows.size() << " generated worlds, seeds " << o.first_seed << "-"
      << o.first_seed + static_cast<uint64_t>(o.count) - 1 << "; " << o.robots
      << (o.robots == 1 ? " robot" : " robots") << " exploring for at most " << number(o.duration, 0)
-     << " s on the default settings. " << n << " runs finished, " << failed
+     << " s on the default settings"
+     << (o.run_seed_offset ? ", each run's seed the world's + " + std::to_string(o.run_seed_offset)
+                           : std::string())
+     << ". " << n << " runs finished, " << failed
      << " failed. Scores of the shared map when the robots shared one, else of the "
      << "robot's own map.\n\n"
      << "| | first quartile | median | third quartile |\n|---|---|---|---|\n";
@@ -374,10 +386,10 @@ std::string formatExploreMarkdown(const ExploreBenchOptions& o,
            << " ([log](runs/" << r.seed << ".log))\n";
   }
   md << "\nEvery world's row: explore.csv; the world files: worlds/; each run's folder: "
-        "runs/<seed>/. One world again: `coopmap run worlds/world_<seed>.yaml --seed <seed> "
-        "--duration "
-     << seconds(o.duration) << " --explore" << (o.robots == 1 ? " --robots 1" : "")
-     << " --out DIR`.\n";
+        "runs/<seed>/. One world again: `coopmap run worlds/world_<seed>.yaml --seed <seed>"
+     << (o.run_seed_offset ? " + " + std::to_string(o.run_seed_offset) : std::string())
+     << " --duration " << seconds(o.duration) << " --explore"
+     << (o.robots == 1 ? " --robots 1" : "") << " --out DIR`.\n";
   return md.str();
 }
 

@@ -24,6 +24,11 @@ int processorCount();
 struct ExploreBenchOptions {
   uint64_t first_seed = 1;  // worlds of seeds first_seed .. first_seed + count - 1
   int count = 1;
+  // Each world's run takes the seed world seed + run_seed_offset (every random choice of
+  // the run: camera and odometry noise, people's walks). 0: the world's own seed; another
+  // offset runs the same worlds again with other noise, which measures how far a build's
+  // scores move from run to run on the same worlds.
+  uint64_t run_seed_offset = 0;
   int robots = 2;               // 1: jose alone; 2: jose and eric
   double duration = 2400.0;     // s of simulated time per world at most
   int jobs = processorCount();  // children at once
@@ -45,7 +50,8 @@ struct ExploreEnding {
 
 // One world.
 struct ExploreRow {
-  uint64_t seed = 0;
+  uint64_t seed = 0;      // the world's
+  uint64_t run_seed = 0;  // the run's: seed + run_seed_offset
   std::string family;
   double floor_area_m2 = 0.0;
   int robots = 0;

@@ -2,6 +2,7 @@
 // metrics.json, the CSV and the summary's statistics.
 #include "sim/runner/explore_bench.h"
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -152,17 +153,19 @@ ExploreRow row(uint64_t seed, double coverage, double recall, double false_occup
 TEST(ExploreBenchTest, CsvQuotesReasonsAndLeavesAFailedRunsScoresEmpty) {
   ExploreRow ok = row(4, 0.95, 0.97, 0.002, 0);
   ok.endings[0].reason = "said \"stop\", then stopped";
+  ok.run_seed = 4;
   ExploreRow failed = row(5, 0.0, 0.0, 0.0, 0);
+  failed.run_seed = 105;  // run with --run-seed-offset 100
   failed.failed = true;
   failed.endings = {{"jose", "failed", "coopmap: error: disk full"}};
   const std::string csv = formatExploreCsv({ok, failed});
   EXPECT_EQ(csv,
-            "seed,family,floor_area_m2,robots,coverage,time_to_50_s,time_to_90_s,wall_recall,"
-            "false_occupied_rate,contacts,robot1,ending1,reason1,exploration_complete,"
-            "wall_time_s\n"
-            "4,loop,0.0,1,0.9500,-1,-1,0.9700,0.00200,0,jose,done,\"said \"\"stop\"\", then "
-            "stopped\",false,0.0\n"
-            "5,loop,0.0,1,,,,,,,jose,failed,\"coopmap: error: disk full\",false,0.0\n");
+            "seed,run_seed,family,floor_area_m2,robots,coverage,time_to_50_s,time_to_90_s,"
+            "wall_recall,false_occupied_rate,contacts,robot1,ending1,reason1,exploration_"
+            "complete,wall_time_s\n"
+            "4,4,loop,0.0,1,0.9500,-1,-1,0.9700,0.00200,0,jose,done,\"said \"\"stop\"\", "
+            "then stopped\",false,0.0\n"
+            "5,105,loop,0.0,1,,,,,,,jose,failed,\"coopmap: error: disk full\",false,0.0\n");
 }
 
 TEST(ExploreBenchTest, SummaryCountsTargetsAndListsTheWorstFirst) {
@@ -231,6 +234,13 @@ TEST(ExploreBenchTest, ValidateNamesTheBadOption) {
             "--jobs: expected at least 1, got 0");
   EXPECT_EQ(message([](ExploreBenchOptions& o) { o.out_dir.clear(); }),
             "--out: expected an output folder, none given");
+  EXPECT_EQ(message([](ExploreBenchOptions& o) {
+              o.first_seed = 10;
+              o.count = 5;
+              o.run_seed_offset = std::numeric_limits<uint64_t>::max() - 13;
+            }),
+            "--run-seed-offset: 18446744073709551602 added to seeds up to 14 would pass "
+            "18446744073709551615");
 }
 
 }  // namespace

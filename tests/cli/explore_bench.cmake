@@ -26,7 +26,7 @@ if(NOT n EQUAL 3)
   message(FATAL_ERROR "explore.csv: expected a header and 2 rows, got:\n${rows}")
 endif()
 list(GET rows 0 header)
-set(expected_header "seed,family,floor_area_m2,robots,coverage,time_to_50_s,time_to_90_s,\
+set(expected_header "seed,run_seed,family,floor_area_m2,robots,coverage,time_to_50_s,time_to_90_s,\
 wall_recall,false_occupied_rate,contacts,robot1,ending1,reason1,robot2,ending2,reason2,\
 exploration_complete,wall_time_s")
 if(NOT header STREQUAL expected_header)
@@ -36,7 +36,7 @@ foreach(seed 1 2)
   list(GET rows ${seed} row)
   # seed, family, area in [100, 600] (and its rounding), 2 robots, coverage in [0, 1],
   # times, wall recall and false-occupied in [0, 1], contacts, jose's and eric's endings.
-  if(NOT row MATCHES "^${seed},(corridor|lt|loop|open),([0-9]+)\\.[0-9],2,(0\\.[0-9]+|1\\.0+),(-1|[0-9]+),(-1|[0-9]+),(0\\.[0-9]+|1\\.0+),0\\.[0-9]+,[0-9]+,jose,([^,]+),\"[^\"]*\",eric,([^,]+),\"[^\"]*\",(true|false),[0-9]+\\.[0-9]$")
+  if(NOT row MATCHES "^${seed},${seed},(corridor|lt|loop|open),([0-9]+)\\.[0-9],2,(0\\.[0-9]+|1\\.0+),(-1|[0-9]+),(-1|[0-9]+),(0\\.[0-9]+|1\\.0+),0\\.[0-9]+,[0-9]+,jose,([^,]+),\"[^\"]*\",eric,([^,]+),\"[^\"]*\",(true|false),[0-9]+\\.[0-9]$")
     message(FATAL_ERROR "explore.csv row ${seed} is not plausible:\n${row}")
   endif()
   if(CMAKE_MATCH_2 LESS 99 OR CMAKE_MATCH_2 GREATER 600 OR CMAKE_MATCH_6 STREQUAL "failed"
@@ -52,6 +52,23 @@ foreach(seed 1 2)
 endforeach()
 if(NOT md MATCHES "\\| all four \\| [0-2] \\|")
   message(FATAL_ERROR "explore.md does not count the targets:\n${md}")
+endif()
+
+# The same world with other noise: the run's seed is the world's plus the offset, in the
+# row, the run's metrics.json and the command explore.md gives to run it again.
+execute_process(COMMAND "${COOPMAP}" bench explore --first-seed 3 --count 1 --duration 10
+                        --run-seed-offset 100 --quiet --out "${WORK_DIR}/o"
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "coopmap bench explore --run-seed-offset failed (${rc}):\n${out}${err}")
+endif()
+file(STRINGS "${WORK_DIR}/o/explore.csv" rows)
+list(GET rows 1 row)
+file(READ "${WORK_DIR}/o/runs/3/metrics.json" metrics)
+file(READ "${WORK_DIR}/o/explore.md" md)
+if(NOT row MATCHES "^3,103," OR NOT metrics MATCHES "\"seed\": 103[,\n]"
+   OR NOT md MATCHES "world_<seed>\\.yaml --seed <seed> \\+ 100 ")
+  message(FATAL_ERROR "--run-seed-offset 100 did not run world 3 with seed 103:\n${row}\n${md}")
 endif()
 
 # A folder of other files is not the benchmark's to replace: refused before any work.
