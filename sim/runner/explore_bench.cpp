@@ -172,11 +172,10 @@ void ExploreBenchOptions::validate() const {
   if (static_cast<uint64_t>(count - 1) > std::numeric_limits<uint64_t>::max() - first_seed)
     throw ConfigError("--count: seeds from --first-seed " + std::to_string(first_seed) +
                       " would pass 18446744073709551615");
-  if (first_seed + static_cast<uint64_t>(count - 1) >
-      std::numeric_limits<uint64_t>::max() - run_seed_offset)
+  const uint64_t last_seed = first_seed + static_cast<uint64_t>(count - 1);
+  if (last_seed > std::numeric_limits<uint64_t>::max() - run_seed_offset)
     throw ConfigError("--run-seed-offset: " + std::to_string(run_seed_offset) +
-                      " added to seeds up to " +
-                      std::to_string(first_seed + static_cast<uint64_t>(count - 1)) +
+                      " added to seeds up to " + std::to_string(last_seed) +
                       " would pass 18446744073709551615");
   if (robots != 1 && robots != 2)
     throw ConfigError("--robots: expected 1 or 2, got " + std::to_string(robots));
