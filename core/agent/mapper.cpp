@@ -8,10 +8,21 @@
 
 namespace coopmap {
 
+namespace {
+
+// The home-base looks' matcher (see Mapper::process).
+StereoConfig centred(StereoConfig c) {
+  c.window_shift = 0;
+  return c;
+}
+
+}  // namespace
+
 Mapper::Mapper(const RobotDescription& robot, const MapLimits& limits, const MapperConfig& config)
     : robot_(robot),
       config_(config),
       matcher_(robot.rig, config.stereo),
+      look_matcher_(robot.rig, centred(config.stereo)),
       grid_(limits, config.occupancy) {
   config_.radial.validate();
 }
@@ -30,10 +41,12 @@ void Mapper::importMap(const std::vector<int16_t>& log_odds, const std::vector<u
   grid_.assign(log_odds, seen);
 }
 
-const RadialMap& Mapper::process(const TrinocularFrame& frame, MotionSegment segment) {
+const RadialMap& Mapper::process(const TrinocularFrame& frame, MotionSegment segment,
+                                 bool home_base_look) {
   using Clock = std::chrono::steady_clock;
   const auto t0 = Clock::now();
-  stats_ = matcher_.compute(frame.reference, frame.horizontal, frame.vertical, disparity_);
+  stats_ = (home_base_look ? look_matcher_ : matcher_)
+               .compute(frame.reference, frame.horizontal, frame.vertical, disparity_);
   const auto t1 = Clock::now();
   TraverseEntry& entry = traverse_.entries.emplace_back();
   entry.segment = segment;

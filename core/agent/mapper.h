@@ -35,9 +35,12 @@ class Mapper {
   // Runs one sensing cycle on a frame; the map is updated at the frame's odometry pose and
   // the radial map appended to the traverse log with the motion segment under way.
   // Returns the radial map as seen, teammates included (for safety: a teammate close ahead
-  // must stop the robot, though it is not mapped).
+  // must stop the robot, though it is not mapped). A look at the home base
+  // (`home_base_look`) is matched on centred windows: the corners' fits were made for
+  // them, and shifted windows move the edges of the landmarks' thin arms.
   const RadialMap& process(const TrinocularFrame& frame,
-                           MotionSegment segment = MotionSegment::kStop);
+                           MotionSegment segment = MotionSegment::kStop,
+                           bool home_base_look = false);
 
   const OccupancyGrid& grid() const { return grid_; }
 
@@ -86,6 +89,7 @@ class Mapper {
   void maskTeammates(RadialMap& scan, const Pose2& pose);
   MapperConfig config_;
   TrinocularMatcher matcher_;
+  TrinocularMatcher look_matcher_;  // centred windows, for the home-base looks
   OccupancyGrid grid_;
   cv::Mat disparity_;
   StereoStats stats_;

@@ -241,7 +241,7 @@ void RobotAgent::sense() {
   if (calibrate_) frame->odometry = odo_ * (raw_now_.inverse() * frame->odometry);
   if (team_ && settings_.teammate_mask_m > 0.0 && localized_)
     mapper_->setTeammates(teammatePositions(), settings_.teammate_mask_m);
-  latest_ = &mapper_->process(*frame, frame_segment_);
+  latest_ = &mapper_->process(*frame, frame_segment_, lookingAtHomeBase());
   trackWhileDriving();
   ++frames_;
 }
@@ -294,8 +294,7 @@ MotionCommand RobotAgent::decide(double now, const RobotStatus& status) {
     // The route ends with a look at the home base where the robot started (unless its last
     // waypoint is one), for the sortie's home-base protocol.
     looked_home_ = true;
-    const Waypoint& last = setup_.route.back();
-    if (!(last.spin && (last.position - home_.translation()).norm() < 0.1)) {
+    if (!isLookAtHome(setup_.route.back())) {
       const MissionConfig c;
       route_ = std::make_unique<RouteFollower>(
           std::vector<Waypoint>{{home_.translation(), true, c.look_turn_rate, 0.0}}, RouteConfig{});
@@ -304,6 +303,26 @@ MotionCommand RobotAgent::decide(double now, const RobotStatus& status) {
   }
   endSortie(now);
   return MotionCommand::stop();
+}
+
+bool RobotAgent::isLookAtHome(const Waypoint& w) const {
+  return w.spin && (w.position - home_.translation()).norm() < 0.1;
+}
+
+bool RobotAgent::lookingAtHomeBase() const {
+  if (!setup_.home_base) return false;
+  if (mission_) {
+    const MissionPhase p = mission_->phase();
+    return p == MissionPhase::kLookAtHome || p == MissionPhase::kAtStart ||
+           p == MissionPhase::kLookAgain || p == MissionPhase::kAtHome;
+  }
+  // A driver shows the robot the home base when it will: every frame may be a look.
+  if (setup_.mode == AgentSetup::Mode::kDriven) return true;
+  if (!started_) return true;  // the first look and the wait after it
+  if (!route_) return false;
+  if (looked_home_) return true;  // the route is over: the looks at home after it
+  const size_t next = route_->nextWaypoint();
+  return next < setup_.route.size() && isLookAtHome(setup_.route[next]);
 }
 
 void RobotAgent::lookAgainAt(const Pose2& home, double now) {

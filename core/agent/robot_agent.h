@@ -126,6 +126,11 @@ class RobotAgent {
   void trackWhileDriving();
   void calibrateStereoScale(TraverseLog& sortie);
   void endSortie(double now);
+  // kRoute: the waypoint is a look at the home base, a turn where the robot started.
+  bool isLookAtHome(const Waypoint& w) const;
+  // The frame now belongs to a look at the home base: matched on centred windows, as the
+  // landmarks' fits expect (see Mapper::process).
+  bool lookingAtHomeBase() const;
   // The sortie's protocol asks for another look: drive to `home` (the estimate's frame) and
   // look at the home base there.
   void lookAgainAt(const Pose2& home, double now);

@@ -40,11 +40,11 @@ struct StereoConfig {
   // this many px (all still contain the pixel), so a window that stays on the pixel's own
   // side of the edge can win; window / 2 - window_shift px of fattening remain. At most
   // window / 2. With 2: Tsukuba bad pixels 2.94 -> 2.57 %, lab 0.53 -> 0.35 %, phantom
-  // radial-map columns beside furniture -23 % on the same frames, but stereo 2.6x slower
-  // and the home-base heading of the lab's drifting tour worse on one seed of ten (0.19 ->
-  // 1.13 deg, beyond issue 5's 0.5 deg). Off (0, centred windows) by default until that is
-  // understood; `coopmap stereo-eval --window-shift 2` measures it.
-  int window_shift = 0;
+  // radial-map columns beside furniture -23 % on the same frames, door jambs before a
+  // textured room kept, at 2.6x the stereo time. The robot agent matches its looks at the
+  // home base on centred windows all the same (see Mapper::process). `coopmap stereo-eval
+  // --window-shift N` measures it.
+  int window_shift = 2;
   // Photometric normalisation before matching. Real cameras differ in gain and offset, and
   // raw SAD does not forgive a few grey levels of offset on weak texture.
   //  kGlobal: each partner's mean and spread are matched to the reference image's (exact for
