@@ -8,23 +8,17 @@
 
 namespace coopmap {
 
-namespace {
-
-// The home-base looks' matcher (see Mapper::process).
-StereoConfig centred(StereoConfig c) {
-  c.window_shift = 0;
-  return c;
-}
-
-}  // namespace
-
 Mapper::Mapper(const RobotDescription& robot, const MapLimits& limits, const MapperConfig& config)
     : robot_(robot),
       config_(config),
       matcher_(robot.rig, config.stereo),
-      look_matcher_(robot.rig, centred(config.stereo)),
       grid_(limits, config.occupancy) {
   config_.radial.validate();
+  if (config.stereo.window_shift > 0) {  // the looks' own matcher (see process)
+    StereoConfig centred = config.stereo;
+    centred.window_shift = 0;
+    look_matcher_.emplace(robot.rig, centred);
+  }
 }
 
 void Mapper::setFrame(const Pose2& X_MO) {
@@ -45,7 +39,7 @@ const RadialMap& Mapper::process(const TrinocularFrame& frame, MotionSegment seg
                                  bool home_base_look) {
   using Clock = std::chrono::steady_clock;
   const auto t0 = Clock::now();
-  stats_ = (home_base_look ? look_matcher_ : matcher_)
+  stats_ = (home_base_look && look_matcher_ ? *look_matcher_ : matcher_)
                .compute(frame.reference, frame.horizontal, frame.vertical, disparity_);
   const auto t1 = Clock::now();
   TraverseEntry& entry = traverse_.entries.emplace_back();

@@ -2,6 +2,7 @@
 // occupancy grid update, with the radial maps kept for the traverse.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -36,8 +37,9 @@ class Mapper {
   // the radial map appended to the traverse log with the motion segment under way.
   // Returns the radial map as seen, teammates included (for safety: a teammate close ahead
   // must stop the robot, though it is not mapped). A look at the home base
-  // (`home_base_look`) is matched on centred windows: the corners' fits were made for
-  // them, and shifted windows move the edges of the landmarks' thin arms.
+  // (`home_base_look`) is matched on centred windows whatever the configuration's
+  // window_shift: the corners' fits were made for them, and shifted windows move the edges
+  // of the landmarks' thin arms.
   const RadialMap& process(const TrinocularFrame& frame,
                            MotionSegment segment = MotionSegment::kStop,
                            bool home_base_look = false);
@@ -89,7 +91,7 @@ class Mapper {
   void maskTeammates(RadialMap& scan, const Pose2& pose);
   MapperConfig config_;
   TrinocularMatcher matcher_;
-  TrinocularMatcher look_matcher_;  // centred windows, for the home-base looks
+  std::optional<TrinocularMatcher> look_matcher_;  // centred, when matcher_'s windows shift
   OccupancyGrid grid_;
   cv::Mat disparity_;
   StereoStats stats_;
