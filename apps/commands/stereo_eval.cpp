@@ -93,7 +93,8 @@ StereoEvalCommand::StereoEvalCommand(CLI::App& app)
   cmd->add_flag("--single-pair", single_pair_, "Use the horizontal pair only");
   cmd->add_option("--png", options_.png_dir,
                   "Folder for pictures: reference, disparity and truth in colour, errors");
-  cmd->add_flag("--json", json_, "Print bad_pixel_rate, mae, bias, density as JSON");
+  cmd->add_flag("--json", json_,
+                "Print bad_pixel_rate, mae, bias, depth_scale_error, density as JSON");
 }
 
 int StereoEvalCommand::run() {
@@ -116,17 +117,17 @@ int StereoEvalCommand::run() {
     JsonWriter j;
     j.beginObject();
     j.value("bad_pixel_rate", r.score.bad_pixel_rate).value("mae", r.score.mae);
-    j.value("bias", r.score.bias);
+    j.value("bias", r.score.bias).value("depth_scale_error", r.score.depth_scale_error);
     j.value("density", r.score.density).value("frames", r.frames);
     j.value("evaluated_pixels", r.score.evaluated).value("valid_pixels", r.score.valid);
     j.endObject();
     std::printf("%s", j.str().c_str());
   } else {
     std::printf(
-        "frames %d: bad_pixel_rate %.4f (> 1 px), mae %.3f px, bias %+.3f px (good "
-        "pixels), density %.3f (%d of %d pixels with ground truth)\n",
-        r.frames, r.score.bad_pixel_rate, r.score.mae, r.score.bias, r.score.density, r.score.valid,
-        r.score.evaluated);
+        "frames %d: bad_pixel_rate %.4f (> 1 px), mae %.3f px, bias %+.3f px, depth "
+        "scale error %+.4f (good pixels), density %.3f (%d of %d pixels with ground truth)\n",
+        r.frames, r.score.bad_pixel_rate, r.score.mae, r.score.bias, r.score.depth_scale_error,
+        r.score.density, r.score.valid, r.score.evaluated);
   }
   return 0;
 }

@@ -20,11 +20,6 @@ class StereoScaleCommand : public Command {
         ->required()
         ->check(CLI::ExistingDirectory);
     cmd->add_option("--robot", options_.robot, "Only this robot's logs")->capture_default_str();
-    cmd->add_option("--passes", options_.passes,
-                    "Passes of the measurement, each from the odometry rescaled to the one "
-                    "before's figure (1-10; one pass finds about 70 % of a scale)")
-        ->capture_default_str()
-        ->check(CLI::Range(1, 10));
   }
 
   int run() override {

@@ -491,7 +491,7 @@ void RobotAgent::calibrateStereoScale(TraverseLog& sortie) {
       raw.entries[j].scan.odometry = raw_[sortie_begin_ + j];
     stereo_.add(stereoDistanceScale(raw));
   }
-  if (stereo_.pairs < kMinStereoScalePairs || std::abs(stereo_.scale()) > kMaxStereoScale) return;
+  if (stereo_.pairs() < kMinStereoScalePairs || std::abs(stereo_.scale()) > kMaxStereoScale) return;
   const double before = sortie_scale_;  // what the sortie was driven on
   const double after = stereo_.scale();
   calibration_.setDistanceScale(after);

@@ -1,5 +1,6 @@
 #include "core/correction/stereo_scale.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>
@@ -117,20 +118,70 @@ void StereoScaleConfig::validate() const {
   if (!(normal_radius_m > 0.0)) fail("normal_radius_m", "positive metres");
   if (!(max_sigma_m > 0.0)) fail("max_sigma_m", "positive metres");
   if (max_iterations < 1) fail("max_iterations", "an integer >= 1");
-  if (passes < 1 || passes > 10) fail("passes", "an integer in [1, 10]");
   if (!(max_shift_m > 0.0)) fail("max_shift_m", "positive metres");
 }
 
 void StereoScale::add(const StereoScale& other) {
-  sum_so += other.sum_so;
-  sum_ss += other.sum_ss;
-  pairs += other.pairs;
+  pairs_measured.insert(pairs_measured.end(), other.pairs_measured.begin(),
+                        other.pairs_measured.end());
 }
 
-// One pass over the log at its (rescaled) odometry; each pair's stereo displacement is set
-// against the odometry's own displacement `original` for the same entries.
-static StereoScale onePass(const TraverseLog& log, const std::vector<Pose2>& original,
-                           const StereoScaleConfig& config) {
+namespace {
+
+double median(std::vector<double> v) {
+  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+  std::nth_element(v.begin(), mid, v.end());
+  return *mid;
+}
+
+}  // namespace
+
+double StereoScale::scale() const {
+  if (pairs_measured.empty()) return 0.0;
+  std::vector<double> values;
+  for (const Pair& p : pairs_measured) values.push_back(p.over_count);
+  double k = median(values);  // a robust start
+  // The spread between pairs, tau: the smallest at which the pairs' residuals, each over
+  // sqrt(sigma^2 + tau^2), have the median absolute value of a unit normal (0.6745).
+  std::vector<double> z(pairs_measured.size());
+  auto medianZ = [&](double tau) {
+    for (size_t i = 0; i < pairs_measured.size(); ++i)
+      z[i] = std::abs(pairs_measured[i].over_count - k) / std::hypot(pairs_measured[i].sigma, tau);
+    return median(z);
+  };
+  double tau = 0.0;
+  if (medianZ(0.0) > 0.6745) {
+    double lo = 0.0, hi = 1.0;
+    for (int it = 0; it < 60; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      if (medianZ(mid) > 0.6745) {
+        lo = mid;
+      } else {
+        hi = mid;
+      }
+    }
+    tau = hi;
+  }
+  // Huber's weights (1.345 standardised residuals) on the pairs' variances, from the median.
+  for (int it = 0; it < 50; ++it) {
+    double sum = 0.0, weights = 0.0;
+    for (const Pair& p : pairs_measured) {
+      const double var = p.sigma * p.sigma + tau * tau;
+      const double r = std::abs(p.over_count - k) / std::sqrt(var);
+      const double w = (r <= 1.345 ? 1.0 : 1.345 / r) / var;
+      sum += w * p.over_count;
+      weights += w;
+    }
+    const double next = weights > 0.0 ? sum / weights : k;
+    const bool settled = std::abs(next - k) < 1e-9;
+    k = next;
+    if (settled) break;
+  }
+  return k;
+}
+
+StereoScale stereoDistanceScale(const TraverseLog& log, const StereoScaleConfig& config) {
+  config.validate();
   StereoScale out;
   const size_t n = log.entries.size();
   const size_t half = static_cast<size_t>(config.half_window);
@@ -205,35 +256,10 @@ static StereoScale onePass(const TraverseLog& log, const std::vector<Pose2>& ori
     if (!(info_u > 0.0) || 1.0 / std::sqrt(info_u) > config.max_sigma_m) continue;
     const Eigen::Vector2d t = x.head<2>();
     const double d_s = u.dot(d_o + t);
-    const double d_orig = u.dot(original[j].translation() - original[i].translation());
-    out.sum_so += info_u * d_s * d_orig;
-    out.sum_ss += info_u * d_s * d_s;
-    ++out.pairs;
-  }
-  return out;
-}
-
-StereoScale stereoDistanceScale(const TraverseLog& log, const StereoScaleConfig& config) {
-  config.validate();
-  std::vector<Pose2> original;
-  for (const TraverseEntry& e : log.entries) original.push_back(e.scan.odometry);
-  TraverseLog trial = log;
-  StereoScale out;
-  double start = 0.0;
-  for (int pass = 0; pass < config.passes; ++pass) {
-    // The matches lean toward the displacement they start from (a noisy surface matched to
-    // its own noise): each pass after the first starts from the odometry rescaled to the
-    // pass before's figure.
-    const double shrink = 1.0 / (1.0 + start);
-    for (size_t j = 1; start != 0.0 && j < log.entries.size(); ++j) {
-      const Pose2 u = original[j - 1].inverse() * original[j];
-      trial.entries[j].scan.odometry =
-          trial.entries[j - 1].scan.odometry *
-          Pose2(shrink * u.translation().x(), shrink * u.translation().y(), u.theta);
-    }
-    out = onePass(trial, original, config);
-    if (out.pairs == 0) break;
-    start = out.scale();
+    const double d_odometry = u.dot(d_o);
+    // The over-count and its 1-sigma through the stereo displacement's.
+    out.pairs_measured.push_back(
+        {d_odometry / d_s - 1.0, d_odometry / (d_s * d_s * std::sqrt(info_u))});
   }
   return out;
 }

@@ -9,6 +9,8 @@
 // it: door jambs, corners, furniture) count.
 #pragma once
 
+#include <vector>
+
 #include "core/correction/traverse_log.h"
 
 namespace coopmap {
@@ -24,28 +26,32 @@ struct StereoScaleConfig {
   double normal_radius_m = 0.1;  // earlier points this near fit the surface through one
   double max_sigma_m = 0.005;    // 1-sigma of the match's position along the travel, at most
   int max_iterations = 20;
-  // Passes, each after the first from the odometry rescaled to the one before's figure:
-  // more passes find more of the whole scale, but in the building one pass maps better
-  // (measured: docs/experiments/2026-12-building-sessions-25-34.md).
-  int passes = 1;
   double max_shift_m = 0.1;  // a match that moves the later points farther is refused
   void validate() const;     // throws std::invalid_argument naming the field
 };
 
-// Weighted least squares of odometry displacement d_o against stereo displacement d_s
-// (d_o = (1 + k) d_s, weights 1 / sigma^2): sums to pool over traverses.
+// Each pair's over-count (odometry displacement over stereo displacement, minus one) with
+// its match's 1-sigma, pooled over traverses. The scale is a Huber M-estimate weighting each
+// pair by its match's variance plus a spread between pairs estimated from the pairs
+// themselves: on rendered stereo the pairs scatter by about 3 % where their matches claim a
+// few tenths of one (viewpoint-dependent surfaces, matches to the wrong face), and weights
+// from the matches alone let a few pairs decide the figure (measured:
+// docs/experiments/2026-12-07-stereo-scale-estimator.md).
 struct StereoScale {
-  double sum_so = 0.0;  // sum w d_s d_o
-  double sum_ss = 0.0;  // sum w d_s^2
-  int pairs = 0;
+  struct Pair {
+    double over_count = 0.0;
+    double sigma = 0.0;  // of the over-count, from the match's information
+  };
+  std::vector<Pair> pairs_measured;
+  int pairs() const { return static_cast<int>(pairs_measured.size()); }
   void add(const StereoScale& other);
-  // k: the fraction by which the odometry over-counts the distance (0 without pairs).
-  double scale() const { return sum_ss > 0.0 ? sum_so / sum_ss - 1.0 : 0.0; }
+  // k: the fraction by which the odometry over-counts the distance (0 without pairs). Huber
+  // weights (1.345) on each pair's variance sigma^2 + tau^2, tau the spread at which the
+  // pairs' standardised residuals have a unit normal's median absolute value.
+  double scale() const;
 };
 
-// The matches lean toward the displacement they start from, the odometry's: one pass finds
-// only part of a scale (StereoScaleConfig::passes; measured:
-// docs/experiments/2026-12-building-settings.md).
+// The pairs of one traverse log, each at its entry's odometry.
 StereoScale stereoDistanceScale(const TraverseLog& log, const StereoScaleConfig& config = {});
 
 }  // namespace coopmap

@@ -13,7 +13,7 @@ DisparityScore scoreDisparity(const cv::Mat& disparity, const cv::Mat& truth, do
   if (disparity.type() != CV_32F || truth.type() != CV_32F || disparity.size() != truth.size())
     throw std::invalid_argument("scoreDisparity: expected two CV_32F images of one size");
   DisparityScore s;
-  double abs_sum = 0.0, signed_sum = 0.0;
+  double abs_sum = 0.0, signed_sum = 0.0, relative_sum = 0.0;
   for (int v = border; v < disparity.rows - border; ++v)
     for (int u = border; u < disparity.cols - border; ++u) {
       const float t = truth.at<float>(v, u);
@@ -29,12 +29,14 @@ DisparityScore scoreDisparity(const cv::Mat& disparity, const cv::Mat& truth, do
       } else {
         ++s.good;
         signed_sum += double(d) - t;
+        relative_sum += double(t) / d - 1.0;
       }
     }
   s.density = s.evaluated ? double(s.valid) / s.evaluated : 0.0;
   s.bad_pixel_rate = s.valid ? double(s.bad) / s.valid : 0.0;
   s.mae = s.valid ? abs_sum / s.valid : 0.0;
   s.bias = s.good ? signed_sum / s.good : 0.0;
+  s.depth_scale_error = s.good ? relative_sum / s.good : 0.0;
   return s;
 }
 

@@ -11,6 +11,9 @@ struct DisparityScore {
   // Mean signed error (px, estimate minus truth) of the good pixels (|error| <= threshold):
   // a systematic sub-pixel offset, which turns into a range error growing with depth.
   double bias = 0.0;
+  // Mean relative depth error of the good pixels (truth / estimate - 1): a range scale
+  // error, which a distance measured from stereo inherits whole.
+  double depth_scale_error = 0.0;
   int good = 0;          // valid pixels with |error| <= threshold
   double density = 0.0;  // valid pixels / pixels with ground truth
   int evaluated = 0;     // pixels with ground truth (inside the border)

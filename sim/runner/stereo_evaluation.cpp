@@ -30,7 +30,7 @@ void writePng(const std::string& path, const cv::Mat& img) {
 // Accumulates scores over frames (counts add up; rates are recomputed).
 struct Accumulator {
   DisparityScore total;
-  double abs_sum = 0.0, signed_sum = 0.0;
+  double abs_sum = 0.0, signed_sum = 0.0, relative_sum = 0.0;
   int frames = 0;
   void add(const DisparityScore& s) {
     total.evaluated += s.evaluated;
@@ -39,6 +39,7 @@ struct Accumulator {
     abs_sum += s.mae * s.valid;
     total.good += s.good;
     signed_sum += s.bias * s.good;
+    relative_sum += s.depth_scale_error * s.good;
     ++frames;
   }
   DisparityScore result() const {
@@ -47,6 +48,7 @@ struct Accumulator {
     r.bad_pixel_rate = r.valid ? double(r.bad) / r.valid : 0.0;
     r.mae = r.valid ? abs_sum / r.valid : 0.0;
     r.bias = r.good ? signed_sum / r.good : 0.0;
+    r.depth_scale_error = r.good ? relative_sum / r.good : 0.0;
     return r;
   }
 };

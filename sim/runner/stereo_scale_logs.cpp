@@ -31,9 +31,7 @@ double trueScale(const std::vector<Pose2>& odometry, const std::vector<const Pos
 
 StereoScaleSummary runStereoScale(const StereoScaleOptions& o) {
   if (o.run_dirs.empty()) throw std::invalid_argument("stereo-scale: expected run folders");
-  StereoScaleConfig config;
-  config.passes = o.passes;
-  config.validate();
+  const StereoScaleConfig config;
   StereoScaleSummary s;
   StereoScale pooled;
   for (const std::string& dir : o.run_dirs) {
@@ -65,7 +63,7 @@ StereoScaleSummary runStereoScale(const StereoScaleOptions& o) {
       StereoScaleLog row;
       row.run_dir = dir;
       row.robot = robot;
-      row.pairs = measured.pairs;
+      row.pairs = measured.pairs();
       row.scale = measured.scale();
       row.truth =
           truth.empty() ? std::numeric_limits<double>::quiet_NaN() : trueScale(raw, true_poses);
@@ -75,7 +73,7 @@ StereoScaleSummary runStereoScale(const StereoScaleOptions& o) {
       throw std::runtime_error(dir + ": no traverse_" + (o.robot.empty() ? "<robot>" : o.robot) +
                                ".traverse log in the folder");
   }
-  s.pairs = pooled.pairs;
+  s.pairs = pooled.pairs();
   s.pooled = pooled.scale();
   double sum = 0.0, sq = 0.0;
   for (const StereoScaleLog& l : s.logs)

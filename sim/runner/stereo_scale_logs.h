@@ -12,7 +12,6 @@ namespace coopmap {
 struct StereoScaleOptions {
   std::vector<std::string> run_dirs;  // `coopmap run` output folders
   std::string robot;                  // only this robot's logs ("": every robot's)
-  int passes = 3;                     // StereoScaleConfig::passes
 };
 
 struct StereoScaleLog {
@@ -25,7 +24,7 @@ struct StereoScaleLog {
 struct StereoScaleSummary {
   std::vector<StereoScaleLog> logs;
   int pairs = 0;
-  double pooled = 0.0;          // every pair of every log, weighted (StereoScale::scale)
+  double pooled = 0.0;          // every pair of every log (StereoScale::scale)
   double mean = 0.0;            // of the logs' figures (those with pairs)
   double standard_error = 0.0;  // of that mean, from the logs' spread (pairs within a
                                 // log share its geometry: their formal weights overstate it)

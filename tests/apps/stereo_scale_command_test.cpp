@@ -57,8 +57,6 @@ TEST(StereoScaleCommandTest, MeasuresEachLogAtItsRawOdometryAndPoolsThem) {
   EXPECT_NEAR(s.mean, 0.5 * (s.logs[0].scale + s.logs[1].scale), 1e-12);
   EXPECT_GT(s.standard_error, 0.0);
   EXPECT_LT(s.standard_error, 0.002);
-  o.passes = 1;  // the passes are the measurement's (StereoScaleTest)
-  EXPECT_NE(runStereoScale(o).pooled, s.pooled);
 }
 
 TEST(StereoScaleCommandTest, AFolderWithoutLogsOrOdometryIsNamed) {
@@ -82,8 +80,6 @@ TEST(StereoScaleCommandTest, AFolderWithoutLogsOrOdometryIsNamed) {
     EXPECT_NE(std::string(e.what()).find("trajectory_r_odometry.tum"), std::string::npos)
         << e.what();
   }
-  o.passes = 0;
-  EXPECT_THROW(runStereoScale(o), std::invalid_argument);
 }
 
 }  // namespace

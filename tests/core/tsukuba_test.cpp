@@ -75,5 +75,14 @@ TEST(DisparityScoreTest, BiasIsTheMeanSignedErrorOfTheGoodPixels) {
   EXPECT_NEAR(scoreDisparity(truth - 0.5f, truth).bias, -0.5, 1e-6);
 }
 
+// A disparity 1 % too small everywhere is a range 1 % too long: the depth scale error.
+TEST(DisparityScoreTest, DepthScaleErrorIsTheRelativeRangeError) {
+  cv::Mat truth(10, 10, CV_32F, cv::Scalar(4.0f));
+  truth.rowRange(0, 5).setTo(8.0f);
+  const DisparityScore s = scoreDisparity(truth * 0.99, truth);
+  EXPECT_NEAR(s.depth_scale_error, 1.0 / 0.99 - 1.0, 1e-6);
+  EXPECT_NEAR(scoreDisparity(truth, truth).depth_scale_error, 0.0, 1e-12);
+}
+
 }  // namespace
 }  // namespace coopmap
