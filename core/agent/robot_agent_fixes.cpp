@@ -185,9 +185,10 @@ void RobotAgent::calibrateStereoScale(TraverseLog& sortie) {
       raw.entries[j].scan.odometry = raw_[sortie_begin_ + j];
     stereo_.add(stereoDistanceScale(raw));
   }
-  if (stereo_.pairs() < kMinStereoScalePairs || std::abs(stereo_.scale()) > kMaxStereoScale) return;
+  if (stereo_.pairs() < kMinStereoScalePairs) return;
+  const double after = stereo_.scale();  // an M-estimate over every pair so far: once
+  if (std::abs(after) > kMaxStereoScale) return;
   const double before = sortie_scale_;  // what the sortie was driven on
-  const double after = stereo_.scale();
   calibration_.setDistanceScale(after);
   OdometryBias residual;
   residual.distance_scale = (1.0 + after) / (1.0 + before) - 1.0;
