@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "core/agent/mission_maps.h"
 
@@ -39,6 +40,9 @@ GoalChoice ExplorationGoals::choose(double now, const Pose2& odometry, const Pla
     choice.event = "on a blocked cell: going home";
     return choice;
   }
+  if (step.status == ExploreStatus::kDone && !step.goalless.empty())
+    if (std::optional<GoalChoice> look = lookAtBlockage(now, odometry, maps, planning, step))
+      return std::move(*look);
   const bool idle = travelled < config_.min_sortie_m;
   if (!idle) idle_sorties_ = 0;  // this sortie got somewhere: the row of idle ones is broken
   if (config_.retry_frontiers && step.status == ExploreStatus::kDone && step.failed_left > 0 &&
@@ -73,6 +77,8 @@ GoalChoice ExplorationGoals::choose(double now, const Pose2& odometry, const Pla
   }
   goal_ = step.frontier.goal;
   has_goal_ = true;
+  looking_ = false;
+  goal_wait_ = 0.0;
   goal_deadline_ = now + config_.goal_timeout_factor *
                              (choice.path.length() / config_.route.linear_speed + 10.0);
   last_check_ = now;
@@ -91,6 +97,49 @@ GoalChoice ExplorationGoals::choose(double now, const Pose2& odometry, const Pla
   return choice;
 }
 
+std::optional<GoalChoice> ExplorationGoals::lookAtBlockage(double now, const Pose2& odometry,
+                                                           const PlanningMaps& maps,
+                                                           const PlanningMap& planning,
+                                                           const ExploreStep& step) {
+  // The grid turns a cell held at its clamp (1000) free after 27 rays through it (-40 each,
+  // to below -60): nine seconds of frames at the paper's 3 Hz, and a second more.
+  constexpr double kLookWait = 10.0;
+  constexpr int kTries = 3;  // blockages whose look-from place has no path, skipped
+  for (int tries = 0; tries < kTries; ++tries) {
+    const std::optional<BlockageLook> look =
+        findBlockageLook(maps.map(), planning, odometry.translation(), step.goalless, looked_,
+                         config_.frontiers.blacklist_radius);
+    if (!look) return std::nullopt;
+    looked_.push_back(look->at);  // once, whatever comes of it
+    PlanResult plan = planner_.plan(planning, odometry, look->from);
+    if (!plan.solved()) continue;
+    GoalChoice choice;
+    choice.kind = GoalChoice::Kind::kGoal;
+    choice.path = std::move(plan.path);
+    goal_ = look->from;
+    has_goal_ = true;
+    looking_ = true;
+    goal_face_ = look->heading;
+    goal_wait_ = kLookWait;
+    goal_deadline_ =
+        now +
+        config_.goal_timeout_factor * (choice.path.length() / config_.route.linear_speed + 10.0 +
+                                       M_PI / config_.route.angular_speed) +
+        kLookWait;
+    last_check_ = now;
+    choice.route = route(choice.path, odometry);
+    char buf[160];
+    std::snprintf(buf, sizeof buf,
+                  "to look again at what closes the way to the frontier at (%.1f, %.1f): "
+                  "(%.1f, %.1f), from (%.1f, %.1f)",
+                  look->frontier.x(), look->frontier.y(), look->at.x(), look->at.y(),
+                  look->from.x(), look->from.y());
+    choice.event = buf;
+    return choice;
+  }
+  return std::nullopt;
+}
+
 std::vector<Waypoint> ExplorationGoals::route(const PlannedPath& path,
                                               const Pose2& odometry) const {
   std::vector<Waypoint> route = routeAlong(path.waypoints);
@@ -98,6 +147,7 @@ std::vector<Waypoint> ExplorationGoals::route(const PlannedPath& path,
     if (route.empty()) route.push_back({odometry.translation(), false, 0.0, 0.0});
     route.back().face = goal_face_;
     route.back().face_within = config_.route.heading_tolerance;  // a look, not a home-base look
+    route.back().wait = goal_wait_;
   }
   return route;
 }
@@ -142,14 +192,17 @@ GoalCheck ExplorationGoals::recheck(const PlanningMaps& maps, const PlannedPath&
 void ExplorationGoals::reached() {
   ++goals_reached_;
   if (has_goal_) seen();
+  looking_ = false;
 }
 
 void ExplorationGoals::giveUp() {
-  if (has_goal_) explorer_.blacklist(goal_);
+  if (has_goal_ && !looking_) explorer_.blacklist(goal_);
+  looking_ = false;
   ++goals_failed_;
 }
 
 void ExplorationGoals::seen() {
+  if (looking_) return;  // a place to look from, no frontier's goal
   // The frontier is seen from there or never will be. With retry_frontiers, reached goals
   // are remembered for good (what the robot did not see from there it will not); else the
   // goal is blacklisted for the sortie like a failed one.
@@ -171,6 +224,7 @@ void ExplorationGoals::claim(const std::vector<Eigen::Vector2d>& goals) {
 void ExplorationGoals::startSortie() {
   claims_.clear();
   explorer_.clearBlacklist();
+  looking_ = false;
   has_goal_ = false;
 }
 

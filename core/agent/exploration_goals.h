@@ -12,6 +12,7 @@
 
 #include "core/agent/mission_config.h"
 #include "core/agent/obstacle_memory.h"
+#include "core/planning/blockage_look.h"
 #include "core/planning/frontiers.h"
 #include "core/planning/path_planner.h"
 
@@ -71,7 +72,10 @@ class ExplorationGoals {
   // The goal failed (counted): not chosen again this sortie.
   void giveUp();
   // No goal for now: the way is only blocked for now, or the robot does something else.
-  void drop() { has_goal_ = false; }
+  void drop() {
+    has_goal_ = false;
+    looking_ = false;
+  }
 
   // Teammates drive to these frontier goals (map frame): claimed until the next sortie.
   void claim(const std::vector<Eigen::Vector2d>& goals);
@@ -89,12 +93,20 @@ class ExplorationGoals {
  private:
   // The goal's frontier counts as seen: not a goal again (see retry_frontiers).
   void seen();
+  // When no frontier has a goal the robot can reach: a look at what closes the way to one
+  // (findBlockageLook), each blockage looked at once; nothing when there is none to look at.
+  std::optional<GoalChoice> lookAtBlockage(double now, const Pose2& odometry,
+                                           const PlanningMaps& maps, const PlanningMap& planning,
+                                           const ExploreStep& step);
 
   MissionConfig config_;
   FrontierExplorer explorer_;
   PathPlanner planner_;
   Eigen::Vector2d goal_{0, 0};
-  std::optional<double> goal_face_;  // the heading to turn to there, facing its frontier
+  std::optional<double> goal_face_;      // the heading to turn to there, facing its frontier
+  double goal_wait_ = 0.0;               // s to stand there, facing it
+  bool looking_ = false;                 // the goal is a place to look at a blockage from
+  std::vector<Eigen::Vector2d> looked_;  // blockages looked at (map frame), for good
   bool has_goal_ = false;
   double goal_deadline_ = 0.0;           // s: given up if not reached by then
   double last_check_ = 0.0;              // s: the path's last check against the map

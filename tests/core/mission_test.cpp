@@ -22,6 +22,7 @@ using mission_test::freeAhead;
 using mission_test::lookedAround;
 using mission_test::quickFirstSortie;
 using mission_test::quickLooks;
+using mission_test::roomAndCorridor;
 
 TEST(MissionTest, StopsForGoodAfterTooManyBumpsInASortie) {
   const Pose2 home(2.0, 3.0, 0.0);
@@ -243,6 +244,66 @@ TEST(MissionTest, FrontiersLeftButOutOfReachThisSortieAreTriedAgainNextSortie) {
   ASSERT_EQ(mission.phase(), MissionPhase::kExplore);
   mission.update(step * dt, pose, map, nullptr);
   EXPECT_TRUE(mission.explorationGoal().has_value()) << mission.lastEvent();
+}
+
+TEST(MissionTest, LooksAgainAtWhatClosesTheWayToAFrontierOnceAndGoesOnWhenItIsGone) {
+  // The map holds the room's doorway shut (a person stood in it); the corridor beyond is seen,
+  // its far end a frontier no goal of the room reaches. The robot drives to look at the doorway
+  // from in the room and stands facing it. `clears`: the person has gone and the look shows it
+  // (here: the map without the person from then on), and the frontier is the next goal; else
+  // the blockage is not looked at twice and exploration ends there.
+  auto run = [](bool clears) {
+    const Pose2 home(1.0, 1.0, 0.0);
+    const OccupancyGrid shut = roomAndCorridor(true), open = roomAndCorridor(false);
+    MissionConfig c = quickLooks();
+    c.planner.seed = 4;
+    MissionAgent mission(home, c);
+    mission.startFrom(home, 0.0);  // the odometry frame is the map frame
+    Pose2 pose = home;
+    const double dt = 0.05;
+    int looks = 0;
+    double standing = 0.0, longest_stand = 0.0;
+    Pose2 stood_at = pose;
+    bool looked = false;
+    std::string last;
+    for (int step = 0; step < 20000 && !mission.explorationComplete(); ++step) {
+      const MotionCommand cmd =
+          mission.update(step * dt, pose, looked && clears ? open : shut, nullptr);
+      if (mission.lastEvent() != last) {
+        last = mission.lastEvent();
+        if (last.find("to look again") != std::string::npos) ++looks;
+        if (looked && last.find("to frontier") != std::string::npos) break;
+      }
+      const bool still = cmd.linear == 0.0 && cmd.angular == 0.0;
+      standing = still ? standing + dt : 0.0;
+      if (looks > 0 && standing > longest_stand) {
+        longest_stand = standing;
+        stood_at = pose;
+      }
+      looked = looked || longest_stand > 5.0;
+      pose = pose * Pose2(cmd.linear * dt, 0.0, cmd.angular * dt);
+    }
+    return std::make_tuple(looks, longest_stand, stood_at, last, mission.explorationComplete(),
+                           mission.explorationGoal());
+  };
+  for (const bool clears : {false, true}) {
+    SCOPED_TRACE(clears ? "the look clears the doorway" : "the doorway stays shut");
+    const auto [looks, stood, at, last, complete, goal] = run(clears);
+    EXPECT_EQ(looks, 1) << last;
+    EXPECT_GT(stood, 9.0);  // long enough for the grid's evidence to turn
+    EXPECT_LT(at.x, 2.95);  // in the room, facing the doorway from about 1.2 m
+    EXPECT_NEAR(std::hypot(3.0 - at.x, 2.0 - at.y), 1.2, 0.4);
+    EXPECT_LT(std::abs(std::remainder(at.theta - std::atan2(2.0 - at.y, 3.0 - at.x), 2 * M_PI)),
+              0.35);
+    if (clears) {
+      EXPECT_FALSE(complete) << last;
+      ASSERT_TRUE(goal.has_value()) << last;
+      EXPECT_GT(goal->x(), 3.0);  // through the doorway
+    } else {
+      EXPECT_TRUE(complete) << last;
+      EXPECT_NE(last.find("no reachable goal"), std::string::npos) << last;
+    }
+  }
 }
 
 // A radial map with one obstacle straight ahead at `range` (m), or none.

@@ -1,7 +1,10 @@
-// Shared by the mission tests: a kinematic robot's looks and maps, and a quick mission.
+// Shared by the mission tests (and the planning tests on the same maps): a kinematic robot's
+// looks and maps, and a quick mission.
 #pragma once
 
 #include <cmath>
+#include <cstdint>
+#include <vector>
 
 #include "core/agent/mission.h"
 #include "core/geometry/pose2.h"
@@ -31,6 +34,31 @@ inline OccupancyGrid lookedAround(const Pose2& at) {
   for (int k = -3; k <= 3; ++k)
     for (int i = 0; i < 3; ++i) map.insert(scan, Pose2(at.x, at.y, at.theta + k * M_PI / 18.0));
   return map;
+}
+
+// A 6 m x 4 m map at 5 cm: a walled room x in [0, 3] m with a doorway y in [1.5, 2.5] m in its
+// east wall, a corridor x in [3, 4.5] m seen beyond it, and nothing seen east of that. When
+// `person_in_door`, the map holds an obstacle 0.3 m x 0.5 m in the doorway's middle (someone
+// who stood there), leaving gaps too narrow for the robot either side.
+inline OccupancyGrid roomAndCorridor(bool person_in_door) {
+  const MapLimits lim = MapLimits::covering({0.0, 0.0}, {6.0, 4.0}, 0.05);
+  OccupancyGrid g(lim, OccupancyConfig{});
+  std::vector<int16_t> lo(lim.size(), 0);
+  std::vector<uint8_t> seen(lim.size(), 0);
+  for (int iy = 0; iy < lim.height; ++iy)
+    for (int ix = 0; ix < lim.width; ++ix) {
+      const Eigen::Vector2d c = lim.cellCenter(ix, iy);
+      if (c.x() > 4.5) continue;  // never seen
+      const size_t i = lim.index(ix, iy);
+      seen[i] = 1;
+      const bool east_wall = c.x() > 2.95 && c.x() < 3.05 && (c.y() < 1.5 || c.y() > 2.5);
+      const bool room_wall = c.x() < 3.0 && (c.x() < 0.1 || c.y() < 0.1 || c.y() > 3.9);
+      const bool person =
+          person_in_door && c.x() > 2.95 && c.x() < 3.25 && c.y() > 1.75 && c.y() < 2.25;
+      lo[i] = east_wall || room_wall || person ? 1000 : -1000;
+    }
+  g.assign(lo, seen);
+  return g;
 }
 
 // Quick looks at home (a short wait, a fast turn): the tests are about what comes after.

@@ -1,0 +1,81 @@
+#include "core/planning/blockage_look.h"
+
+#include <cmath>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "tests/core/mission_test_maps.h"
+
+namespace coopmap {
+namespace {
+
+using mission_test::roomAndCorridor;
+
+TEST(BlockageLookTest, APersonMappedInTheDoorwayIsLookedAtFromInTheRoom) {
+  const OccupancyGrid g = roomAndCorridor(true);
+  const PlanningMap p(g, PlanningMapConfig{});
+  const Eigen::Vector2d robot(1.0, 1.0);
+  const std::vector<Frontier> frontiers = findFrontiers(g, p, robot, FrontierConfig{});
+  ASSERT_FALSE(frontiers.empty());
+  for (const Frontier& f : frontiers) ASSERT_FALSE(f.has_goal);  // the doorway is shut
+  const std::optional<BlockageLook> look = findBlockageLook(g, p, robot, frontiers, {}, 0.5);
+  ASSERT_TRUE(look.has_value());
+  // The blockage is the doorway, the look from in the room, facing it, from about 1.2 m.
+  EXPECT_NEAR(look->at.x(), 3.0, 0.35);
+  EXPECT_NEAR(look->at.y(), 2.0, 0.5);
+  EXPECT_LT(look->from.x(), 2.95);
+  EXPECT_TRUE(p.connected(robot, look->from));
+  EXPECT_NEAR((look->at - look->from).norm(), kBlockageLookDistance, 0.15);
+  const Eigen::Vector2d toward = look->at - look->from;
+  EXPECT_NEAR(look->heading, std::atan2(toward.y(), toward.x()), 1e-9);
+  EXPECT_GT(look->frontier.x(), 4.0);
+  // Looked at once: not again.
+  EXPECT_FALSE(findBlockageLook(g, p, robot, frontiers, {look->at}, 0.5).has_value());
+}
+
+TEST(BlockageLookTest, NothingToLookAtWhenTheFrontierCanBeReached) {
+  const OccupancyGrid g = roomAndCorridor(false);
+  const PlanningMap p(g, PlanningMapConfig{});
+  const Eigen::Vector2d robot(1.0, 1.0);
+  const std::vector<Frontier> frontiers = findFrontiers(g, p, robot, FrontierConfig{});
+  ASSERT_FALSE(frontiers.empty());
+  EXPECT_FALSE(findBlockageLook(g, p, robot, frontiers, {}, 0.5).has_value());
+}
+
+TEST(BlockageLookTest, NothingToLookAtFromABlockedCell) {
+  const OccupancyGrid g = roomAndCorridor(true);
+  const PlanningMap p(g, PlanningMapConfig{});
+  const Eigen::Vector2d in_room(1.0, 1.0), on_wall(3.0, 1.0);
+  const std::vector<Frontier> frontiers = findFrontiers(g, p, in_room, FrontierConfig{});
+  EXPECT_FALSE(findBlockageLook(g, p, on_wall, frontiers, {}, 0.5).has_value());
+}
+
+TEST(BlockageLookTest, AFrontierBeyondNeverSeenCellsOnlyIsNotLookedAt) {
+  // A pocket the robot stands in and a patch seen free far off, never-observed cells between
+  // them: no way to the patch's frontier through known cells, so no blockage to look at.
+  const MapLimits lim = MapLimits::covering({0.0, 0.0}, {6.0, 4.0}, 0.05);
+  OccupancyGrid g(lim, {});
+  std::vector<int16_t> lo(lim.size(), 0);
+  std::vector<uint8_t> seen(lim.size(), 0);
+  for (int iy = 0; iy < lim.height; ++iy)
+    for (int ix = 0; ix < lim.width; ++ix) {
+      const Eigen::Vector2d c = lim.cellCenter(ix, iy);
+      const bool pocket = c.x() < 1.5 && c.y() < 1.5;
+      const bool far_patch = c.x() > 4.0 && c.x() < 4.5 && c.y() > 2.0 && c.y() < 3.0;
+      if (!pocket && !far_patch) continue;
+      seen[lim.index(ix, iy)] = 1;
+      lo[lim.index(ix, iy)] = -1000;
+    }
+  g.assign(lo, seen);
+  const PlanningMap p(g, PlanningMapConfig{});
+  const Eigen::Vector2d robot(0.7, 0.7);
+  std::vector<Frontier> frontiers = findFrontiers(g, p, robot, FrontierConfig{});
+  bool goalless = false;
+  for (const Frontier& f : frontiers) goalless = goalless || (!f.has_goal && f.gain > 0);
+  ASSERT_TRUE(goalless);  // the far patch's
+  EXPECT_FALSE(findBlockageLook(g, p, robot, frontiers, {}, 0.5).has_value());
+}
+
+}  // namespace
+}  // namespace coopmap
