@@ -40,7 +40,7 @@ GoalChoice ExplorationGoals::choose(double now, const Pose2& odometry, const Pla
     choice.event = "on a blocked cell: going home";
     return choice;
   }
-  if (step.status == ExploreStatus::kDone && !step.goalless.empty())
+  if (step.status == ExploreStatus::kDone && !step.out_of_reach.empty())
     if (std::optional<GoalChoice> look = lookAtBlockage(now, odometry, maps, planning, step))
       return std::move(*look);
   const bool idle = travelled < config_.min_sortie_m;
@@ -107,7 +107,7 @@ std::optional<GoalChoice> ExplorationGoals::lookAtBlockage(double now, const Pos
   constexpr int kTries = 3;  // blockages whose look-from place has no path, skipped
   for (int tries = 0; tries < kTries; ++tries) {
     const std::optional<BlockageLook> look =
-        findBlockageLook(maps.map(), planning, odometry.translation(), step.goalless, looked_,
+        findBlockageLook(maps.map(), planning, odometry.translation(), step.out_of_reach, looked_,
                          config_.frontiers.blacklist_radius);
     if (!look) return std::nullopt;
     looked_.push_back(look->at);  // once, whatever comes of it

@@ -93,14 +93,14 @@ std::optional<BlockageLook> findBlockageLook(const OccupancyGrid& grid, const Pl
   const int rx = lim.cellX(robot.x()), ry = lim.cellY(robot.y());
   const int region = planning.region(rx, ry);
   if (region == 0) return std::nullopt;
-  std::vector<const Frontier*> goalless;
+  std::vector<const Frontier*> by_gain;
   for (const Frontier& f : frontiers)
-    if (!f.has_goal && f.gain > 0) goalless.push_back(&f);
-  if (goalless.empty()) return std::nullopt;
-  std::stable_sort(goalless.begin(), goalless.end(),
+    if (f.gain > 0) by_gain.push_back(&f);
+  if (by_gain.empty()) return std::nullopt;
+  std::stable_sort(by_gain.begin(), by_gain.end(),
                    [](const Frontier* a, const Frontier* b) { return a->gain > b->gain; });
   const Ways ways = cheapestWays(grid, planning, rx, ry);
-  for (const Frontier* f : goalless) {
+  for (const Frontier* f : by_gain) {
     int64_t end = -1;
     for (const Eigen::Vector2d& c : f->cells) {
       const int ix = lim.cellX(c.x()), iy = lim.cellY(c.y());
@@ -122,12 +122,16 @@ std::optional<BlockageLook> findBlockageLook(const OccupancyGrid& grid, const Pl
     std::reverse(in_region.begin(), in_region.end());
     std::reverse(standable.begin(), standable.end());
     const auto leave = std::find(in_region.begin(), in_region.end(), false);
-    if (leave == in_region.begin() || leave == in_region.end()) continue;
+    if (leave == in_region.begin() || leave == in_region.end()) continue;  // nothing closes it
     const size_t enter = static_cast<size_t>(leave - in_region.begin());
     // The blockage: from where the way leaves the region to where the robot could stand
     // again (or the frontier), its middle, no farther than a metre in.
     size_t beyond = enter;
     while (beyond < way.size() && !standable[beyond]) ++beyond;
+    // With nowhere to stand beyond it, a stretch no longer than the robot's clearance either
+    // side is the frontier's own: the unknown beyond it is what keeps the robot off.
+    const double clearance = planning.config().robot_radius + planning.config().margin;
+    if (beyond == way.size() && (way.back() - way[enter]).norm() <= 2.0 * clearance) continue;
     size_t middle = enter + (beyond - enter) / 2;
     while (middle > enter && (way[middle] - way[enter]).norm() > 1.0) --middle;
     const Eigen::Vector2d at = way[middle];

@@ -1,8 +1,8 @@
-// What closes the way to a frontier the robot has no goal for, and where to look at it from.
-// A frontier without a reachable goal lies beyond cells the planning map holds blocked: a
-// wall, or what the map holds and the building does not (a person who stood in a doorway for
-// a while, a door's jamb smeared into its opening by oblique views). Stereo maps what it is
-// shown; a second look at the blockage from in front, long enough for the grid's evidence to
+// What closes the way to a frontier out of the robot's reach, and where to look at it from.
+// A frontier without a reachable goal, or looked at from its goal and still there, may lie
+// beyond cells the planning map holds blocked: a wall, or what the map holds and the building
+// does not (a person who stood in a doorway for a while, a door's jamb smeared into its
+// opening by oblique views). Stereo maps what it is shown; a second look at the blockage from in front, long enough for the grid's evidence to
 // turn, keeps what stands and clears what does not. The way to the frontier is the cheapest
 // one through the known cells, blocked ones passable at a price (never-observed cells not):
 // where it leaves the robot's free region is the blockage.
@@ -31,10 +31,11 @@ struct BlockageLook {
 // jambs (and nearer than the stereo's range to the walls beyond).
 inline constexpr double kBlockageLookDistance = 1.2;
 
-// The look at what closes the way to the frontier of most gain among those without a goal
-// (`frontiers` as findFrontiers gives them for `grid` and `planning` from `robot`), skipping
-// blockages within `skip_radius` (m) of one in `looked`. Nothing when the robot stands on no
-// free cell, or every such frontier is beyond reach through known cells or looked at.
+// The look at what closes the way to the frontier of most gain among `frontiers` (as
+// findFrontiers gives them for `grid` and `planning` from `robot`) that lie outside the robot's
+// free region, skipping blockages within `skip_radius` (m) of one in `looked`. Nothing when the
+// robot stands on no free cell, or every frontier is in its region, beyond reach through known
+// cells, or behind a blockage looked at.
 std::optional<BlockageLook> findBlockageLook(const OccupancyGrid& grid, const PlanningMap& planning,
                                              const Eigen::Vector2d& robot,
                                              const std::vector<Frontier>& frontiers,

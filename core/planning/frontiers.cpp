@@ -279,7 +279,7 @@ ExploreStep FrontierExplorer::nextWith(const FrontierConfig& config, const Occup
                                      : "goal blacklisted");
       step.reason += buf;
       step.failed_left += f.gain > 0 && !seen_from_goal;
-      if (!f.has_goal) step.goalless.push_back(f);
+      if (!f.has_goal || seen_from_goal) step.out_of_reach.push_back(f);
     }
     step.reason.pop_back();
     return step;

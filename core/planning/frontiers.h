@@ -65,13 +65,15 @@ enum class ExploreStatus { kGoal, kDone, kBlocked };
 
 struct ExploreStep {
   ExploreStatus status = ExploreStatus::kDone;
-  Frontier frontier;               // the chosen one
-  PlanResult plan;                 // the path to its goal
-  int frontiers = 0;               // found this time (with or without a reachable goal)
-  double claim_factor = 1.0;       // of the chosen one: 1 unclaimed, near 0 a teammate's goal
-  std::string reason;              // why done
-  int failed_left = 0;             // when done: frontiers whose goals failed or that have none
-  std::vector<Frontier> goalless;  // when done: the frontiers without a reachable goal
+  Frontier frontier;          // the chosen one
+  PlanResult plan;            // the path to its goal
+  int frontiers = 0;          // found this time (with or without a reachable goal)
+  double claim_factor = 1.0;  // of the chosen one: 1 unclaimed, near 0 a teammate's goal
+  std::string reason;         // why done
+  int failed_left = 0;        // when done: frontiers whose goals failed or that have none
+  // When done: the frontiers without a reachable goal, and those looked at from their goals
+  // and still there (what closes the way to them may be a blockage to look at).
+  std::vector<Frontier> out_of_reach;
 };
 
 // Chooses where to explore next; remembers failed goals.

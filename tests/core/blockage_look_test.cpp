@@ -34,6 +34,29 @@ TEST(BlockageLookTest, APersonMappedInTheDoorwayIsLookedAtFromInTheRoom) {
   EXPECT_FALSE(findBlockageLook(g, p, robot, frontiers, {look->at}, 0.5).has_value());
 }
 
+TEST(BlockageLookTest, AFrontierLookedAtFromItsGoalBeyondTheBlockageIsLookedAtAgain) {
+  // The corridor seen only 0.6 m beyond the doorway: its frontier has a goal in the room,
+  // reached and looked from, and it is still there; the explorer is done, with the frontier
+  // out of reach, and what closes the way to it is the doorway.
+  const OccupancyGrid g = roomAndCorridor(true, 3.6);
+  const PlanningMap p(g, PlanningMapConfig{});
+  const Pose2 robot(1.0, 1.0, 0.0);
+  FrontierExplorer explorer({}, PlannerConfig{});
+  const ExploreStep first = explorer.next(g, p, robot);
+  ASSERT_EQ(first.status, ExploreStatus::kGoal) << first.reason;
+  EXPECT_LT(first.frontier.goal.x(), 2.95);  // on the room's side
+  explorer.markReached(first.frontier.goal);
+  const ExploreStep step = explorer.next(g, p, robot);
+  ASSERT_EQ(step.status, ExploreStatus::kDone);
+  ASSERT_EQ(step.out_of_reach.size(), 1u) << step.reason;
+  const std::optional<BlockageLook> look =
+      findBlockageLook(g, p, robot.translation(), step.out_of_reach, {}, 0.5);
+  ASSERT_TRUE(look.has_value());
+  EXPECT_NEAR(look->at.x(), 3.0, 0.35);
+  EXPECT_NEAR(look->at.y(), 2.0, 0.5);
+  EXPECT_LT(look->from.x(), 2.95);
+}
+
 TEST(BlockageLookTest, NothingToLookAtWhenTheFrontierCanBeReached) {
   const OccupancyGrid g = roomAndCorridor(false);
   const PlanningMap p(g, PlanningMapConfig{});

@@ -37,10 +37,10 @@ inline OccupancyGrid lookedAround(const Pose2& at) {
 }
 
 // A 6 m x 4 m map at 5 cm: a walled room x in [0, 3] m with a doorway y in [1.5, 2.5] m in its
-// east wall, a corridor x in [3, 4.5] m seen beyond it, and nothing seen east of that. When
+// east wall, a corridor x in [3, seen_to] m seen beyond it, and nothing seen east of that. When
 // `person_in_door`, the map holds an obstacle 0.3 m x 0.5 m in the doorway's middle (someone
 // who stood there), leaving gaps too narrow for the robot either side.
-inline OccupancyGrid roomAndCorridor(bool person_in_door) {
+inline OccupancyGrid roomAndCorridor(bool person_in_door, double seen_to = 4.5) {
   const MapLimits lim = MapLimits::covering({0.0, 0.0}, {6.0, 4.0}, 0.05);
   OccupancyGrid g(lim, OccupancyConfig{});
   std::vector<int16_t> lo(lim.size(), 0);
@@ -48,7 +48,7 @@ inline OccupancyGrid roomAndCorridor(bool person_in_door) {
   for (int iy = 0; iy < lim.height; ++iy)
     for (int ix = 0; ix < lim.width; ++ix) {
       const Eigen::Vector2d c = lim.cellCenter(ix, iy);
-      if (c.x() > 4.5) continue;  // never seen
+      if (c.x() > seen_to) continue;  // never seen
       const size_t i = lim.index(ix, iy);
       seen[i] = 1;
       const bool east_wall = c.x() > 2.95 && c.x() < 3.05 && (c.y() < 1.5 || c.y() > 2.5);
