@@ -2,10 +2,11 @@
 // A frontier without a reachable goal, or looked at from its goal and still there, may lie
 // beyond cells the planning map holds blocked: a wall, or what the map holds and the building
 // does not (a person who stood in a doorway for a while, a door's jamb smeared into its
-// opening by oblique views). Stereo maps what it is shown; a second look at the blockage from in front, long enough for the grid's evidence to
-// turn, keeps what stands and clears what does not. The way to the frontier is the cheapest
-// one through the known cells, blocked ones passable at a price (never-observed cells not):
-// where it leaves the robot's free region is the blockage.
+// opening by oblique views). Stereo maps what it is shown; a second look at the blockage
+// from in front, long enough for the grid's evidence to turn, keeps what stands and clears
+// what does not. The way to the frontier is the cheapest one through the known cells,
+// blocked ones passable at a price (never-observed cells not): where it leaves the robot's
+// free region is the blockage.
 #pragma once
 
 #include <optional>
