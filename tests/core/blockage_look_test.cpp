@@ -1,6 +1,7 @@
 #include "core/planning/blockage_look.h"
 
 #include <cmath>
+#include <optional>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -10,6 +11,7 @@
 namespace coopmap {
 namespace {
 
+using mission_test::gridOf;
 using mission_test::roomAndCorridor;
 
 TEST(BlockageLookTest, APersonMappedInTheDoorwayIsLookedAtFromInTheRoom) {
@@ -78,19 +80,12 @@ TEST(BlockageLookTest, AFrontierBeyondNeverSeenCellsOnlyIsNotLookedAt) {
   // A pocket the robot stands in and a patch seen free far off, never-observed cells between
   // them: no way to the patch's frontier through known cells, so no blockage to look at.
   const MapLimits lim = MapLimits::covering({0.0, 0.0}, {6.0, 4.0}, 0.05);
-  OccupancyGrid g(lim, {});
-  std::vector<int16_t> lo(lim.size(), 0);
-  std::vector<uint8_t> seen(lim.size(), 0);
-  for (int iy = 0; iy < lim.height; ++iy)
-    for (int ix = 0; ix < lim.width; ++ix) {
-      const Eigen::Vector2d c = lim.cellCenter(ix, iy);
-      const bool pocket = c.x() < 1.5 && c.y() < 1.5;
-      const bool far_patch = c.x() > 4.0 && c.x() < 4.5 && c.y() > 2.0 && c.y() < 3.0;
-      if (!pocket && !far_patch) continue;
-      seen[lim.index(ix, iy)] = 1;
-      lo[lim.index(ix, iy)] = -1000;
-    }
-  g.assign(lo, seen);
+  const OccupancyGrid g = gridOf(lim, [](const Eigen::Vector2d& c) -> std::optional<int16_t> {
+    const bool pocket = c.x() < 1.5 && c.y() < 1.5;
+    const bool far_patch = c.x() > 4.0 && c.x() < 4.5 && c.y() > 2.0 && c.y() < 3.0;
+    if (!pocket && !far_patch) return std::nullopt;
+    return -1000;
+  });
   const PlanningMap p(g, PlanningMapConfig{});
   const Eigen::Vector2d robot(0.7, 0.7);
   std::vector<Frontier> frontiers = findFrontiers(g, p, robot, FrontierConfig{});

@@ -1,9 +1,12 @@
 #include "core/planning/frontiers.h"
 
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
 #include <gtest/gtest.h>
+
+#include "tests/core/mission_test_maps.h"
 
 namespace coopmap {
 namespace {
@@ -12,22 +15,13 @@ namespace {
 // wall (y intervals, m); east of the wall nothing has been seen.
 OccupancyGrid roomWithDoors(const std::vector<std::pair<double, double>>& doors) {
   const MapLimits lim = MapLimits::covering({0.0, 0.0}, {6.0, 4.0}, 0.05);
-  OccupancyGrid g(lim, {});
-  std::vector<int16_t> lo(lim.size(), 0);
-  std::vector<uint8_t> seen(lim.size(), 0);
-  for (int iy = 0; iy < lim.height; ++iy)
-    for (int ix = 0; ix < lim.width; ++ix) {
-      const Eigen::Vector2d c = lim.cellCenter(ix, iy);
-      if (c.x() > 3.05) continue;  // unknown
-      const size_t i = lim.index(ix, iy);
-      seen[i] = 1;
-      bool wall = c.x() < 0.1 || c.y() < 0.1 || c.y() > 3.9 || c.x() > 2.95;
-      for (const auto& [y0, y1] : doors)
-        if (c.x() > 2.95 && c.y() > y0 && c.y() < y1) wall = false;
-      lo[i] = wall ? 500 : -500;
-    }
-  g.assign(lo, seen);
-  return g;
+  return mission_test::gridOf(lim, [&](const Eigen::Vector2d& c) -> std::optional<int16_t> {
+    if (c.x() > 3.05) return std::nullopt;  // unknown
+    bool wall = c.x() < 0.1 || c.y() < 0.1 || c.y() > 3.9 || c.x() > 2.95;
+    for (const auto& [y0, y1] : doors)
+      if (c.x() > 2.95 && c.y() > y0 && c.y() < y1) wall = false;
+    return wall ? 500 : -500;
+  });
 }
 
 PlanningMap planningOf(const OccupancyGrid& g) { return PlanningMap(g, PlanningMapConfig{}); }

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "core/agent/mission.h"
@@ -36,29 +37,37 @@ inline OccupancyGrid lookedAround(const Pose2& at) {
   return map;
 }
 
+// A grid over `lim` whose cell with centre c holds log-odds `cell(c)`, observed, or is never
+// observed where `cell(c)` is nothing.
+template <typename Cell>
+OccupancyGrid gridOf(const MapLimits& lim, Cell cell) {
+  OccupancyGrid g(lim, OccupancyConfig{});
+  std::vector<int16_t> lo(lim.size(), 0);
+  std::vector<uint8_t> seen(lim.size(), 0);
+  for (int iy = 0; iy < lim.height; ++iy)
+    for (int ix = 0; ix < lim.width; ++ix)
+      if (const std::optional<int16_t> l = cell(lim.cellCenter(ix, iy))) {
+        lo[lim.index(ix, iy)] = *l;
+        seen[lim.index(ix, iy)] = 1;
+      }
+  g.assign(lo, seen);
+  return g;
+}
+
 // A 6 m x 4 m map at 5 cm: a walled room x in [0, 3] m with a doorway y in [1.5, 2.5] m in its
 // east wall, a corridor x in [3, seen_to] m seen beyond it, and nothing seen east of that. When
 // `person_in_door`, the map holds an obstacle 0.3 m x 0.5 m in the doorway's middle (someone
 // who stood there), leaving gaps too narrow for the robot either side.
 inline OccupancyGrid roomAndCorridor(bool person_in_door, double seen_to = 4.5) {
   const MapLimits lim = MapLimits::covering({0.0, 0.0}, {6.0, 4.0}, 0.05);
-  OccupancyGrid g(lim, OccupancyConfig{});
-  std::vector<int16_t> lo(lim.size(), 0);
-  std::vector<uint8_t> seen(lim.size(), 0);
-  for (int iy = 0; iy < lim.height; ++iy)
-    for (int ix = 0; ix < lim.width; ++ix) {
-      const Eigen::Vector2d c = lim.cellCenter(ix, iy);
-      if (c.x() > seen_to) continue;  // never seen
-      const size_t i = lim.index(ix, iy);
-      seen[i] = 1;
-      const bool east_wall = c.x() > 2.95 && c.x() < 3.05 && (c.y() < 1.5 || c.y() > 2.5);
-      const bool room_wall = c.x() < 3.0 && (c.x() < 0.1 || c.y() < 0.1 || c.y() > 3.9);
-      const bool person =
-          person_in_door && c.x() > 2.95 && c.x() < 3.25 && c.y() > 1.75 && c.y() < 2.25;
-      lo[i] = east_wall || room_wall || person ? 1000 : -1000;
-    }
-  g.assign(lo, seen);
-  return g;
+  return gridOf(lim, [&](const Eigen::Vector2d& c) -> std::optional<int16_t> {
+    if (c.x() > seen_to) return std::nullopt;
+    const bool east_wall = c.x() > 2.95 && c.x() < 3.05 && (c.y() < 1.5 || c.y() > 2.5);
+    const bool room_wall = c.x() < 3.0 && (c.x() < 0.1 || c.y() < 0.1 || c.y() > 3.9);
+    const bool person =
+        person_in_door && c.x() > 2.95 && c.x() < 3.25 && c.y() > 1.75 && c.y() < 2.25;
+    return east_wall || room_wall || person ? 1000 : -1000;
+  });
 }
 
 // Quick looks at home (a short wait, a fast turn): the tests are about what comes after.
