@@ -119,6 +119,7 @@ std::optional<GoalChoice> ExplorationGoals::lookAtBlockage(double now, const Pos
     goal_ = look->from;
     has_goal_ = true;
     looking_ = true;
+    look_at_ = look->at;
     goal_face_ = look->heading;
     goal_wait_ = kLookWait;
     goal_deadline_ =
@@ -177,6 +178,23 @@ GoalCheck ExplorationGoals::recheck(const PlanningMaps& maps, const PlannedPath&
     check.event = "path blocked: replanned";
   } else if (maps.memory().hasRecentHits() && r.result.status == PlanStatus::kGoalInvalid &&
              maps({.recent = false}).freeAt(goal_)) {
+    if (looking_) {
+      // What the cameras have just seen by the look's place is what the look came to see:
+      // stand at the nearest place still free, facing the blockage.
+      const PlanningMap seen_now = maps();
+      if (const std::optional<Eigen::Vector2d> nearer =
+              nearestFreeCell(seen_now, goal_, config_.escape_radius)) {
+        PlanResult plan = planner_.plan(seen_now, odometry, *nearer);
+        if (plan.solved()) {
+          goal_ = *nearer;
+          goal_face_ = std::atan2(look_at_.y() - goal_.y(), look_at_.x() - goal_.x());
+          check.kind = GoalCheck::Kind::kReplanned;
+          check.path = std::move(plan.path);
+          check.event = "the look's place taken by what was just seen: looking from nearby";
+          return check;
+        }
+      }
+    }
     // The goal stands by what the cameras have just seen: its frontier is seen.
     seen();
     check.kind = GoalCheck::Kind::kTakenAsSeen;

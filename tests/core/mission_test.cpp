@@ -317,6 +317,64 @@ RadialMap aheadAt(std::optional<double> range) {
   return scan;
 }
 
+// The cameras see something at the place the robot drives to look at a blockage from (the
+// jamb it looks at, seen nearer; a person stepping by): the place is blocked now, but the look
+// is not given up for it. The robot stands at the nearest place still free, facing the
+// blockage, for the look's whole wait.
+TEST(MissionTest, ALookWhosePlaceIsSeenBlockedIsTakenFromNearby) {
+  const Pose2 home(1.0, 1.0, 0.0);
+  const OccupancyGrid shut = roomAndCorridor(true);
+  MissionConfig c = quickLooks();
+  c.planner.seed = 4;
+  c.recent_hits_s = 4.0;
+  MissionAgent mission(home, c);
+  mission.startFrom(home, 0.0);  // the odometry frame is the map frame
+  Pose2 pose = home;
+  const double dt = 0.05;
+  std::optional<Eigen::Vector2d> place;  // the look's place, seen blocked
+  int frames_seen = 0;
+  double standing = 0.0, longest_stand = 0.0;
+  Pose2 stood_at = pose;
+  bool looking = false, nearby = false;
+  std::string last;
+  for (int step = 0; step < 20000 && !mission.explorationComplete(); ++step) {
+    std::optional<RadialMap> scan;
+    const std::optional<Eigen::Vector2d> goal = mission.explorationGoal();
+    if (looking && goal && frames_seen < 3 && !nearby) {
+      // Driving straight at the place, 0.6-1.0 m before it: the cameras see it blocked.
+      const Eigen::Vector2d to = *goal - pose.translation();
+      const double off = std::remainder(std::atan2(to.y(), to.x()) - pose.theta, 2.0 * M_PI);
+      if (to.norm() > 0.6 && to.norm() < 1.0 && std::abs(off) < 0.05) {
+        scan = aheadAt(to.norm());
+        place = *goal;
+        ++frames_seen;
+      }
+    }
+    const MotionCommand cmd = mission.update(step * dt, pose, shut, scan ? &*scan : nullptr);
+    if (mission.lastEvent() != last) {
+      last = mission.lastEvent();
+      looking = looking || last.find("to look again") != std::string::npos;
+      nearby = nearby || last.find("looking from nearby") != std::string::npos;
+    }
+    const bool still = cmd.linear == 0.0 && cmd.angular == 0.0;
+    standing = still ? standing + dt : 0.0;
+    if (frames_seen > 0 && standing > longest_stand) {
+      longest_stand = standing;
+      stood_at = pose;
+    }
+    pose = pose * Pose2(cmd.linear * dt, 0.0, cmd.angular * dt);
+  }
+  ASSERT_TRUE(place.has_value()) << "the robot never drove straight at its look's place";
+  EXPECT_TRUE(nearby) << last;
+  EXPECT_GT(longest_stand, 9.0) << last;  // the look's whole wait
+  const double from_place = (stood_at.translation() - *place).norm();
+  EXPECT_GT(from_place, 0.1) << "stood where the cameras saw it blocked";
+  EXPECT_LT(from_place, 0.8);
+  EXPECT_LT(std::abs(std::remainder(stood_at.theta - std::atan2(2.0 - stood_at.y, 3.0 - stood_at.x),
+                                    2 * M_PI)),
+            0.35);  // facing the doorway
+}
+
 // Two robots converging from the sides see nothing of each other in their cameras: the one
 // without priority stops while the teammate, at the speed it reports, would come within its
 // disc; the one with priority drives on (here the teammate never yields: they meet).
