@@ -28,6 +28,17 @@ inline RadialMap freeAhead(double range) {
   return scan;
 }
 
+// A radial map with one obstacle straight ahead at `range` (m), or none.
+inline RadialMap aheadAt(std::optional<double> range) {
+  RadialMap scan = freeAhead(4.0);
+  for (RadialReading& r : scan.readings)
+    if (range && std::abs(r.bearing) < 0.1) {
+      r.range = *range;
+      r.kind = RadialKind::kHit;
+    }
+  return scan;
+}
+
 // Free space 3.5 m ahead of `at` over +-60 degrees (a look that way); unknown beyond.
 inline OccupancyGrid lookedAround(const Pose2& at) {
   OccupancyGrid map(MapLimits::covering({0.0, 0.0}, {8.0, 6.0}, 0.05), OccupancyConfig{});
