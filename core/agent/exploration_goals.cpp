@@ -119,7 +119,6 @@ std::optional<GoalChoice> ExplorationGoals::lookAtBlockage(double now, const Pos
     goal_ = look->from;
     has_goal_ = true;
     looking_ = true;
-    look_at_ = look->at;
     goal_face_ = look->heading;
     goal_wait_ = kLookWait;
     goal_deadline_ =
@@ -187,7 +186,8 @@ GoalCheck ExplorationGoals::recheck(const PlanningMaps& maps, const PlannedPath&
         PlanResult plan = planner_.plan(seen_now, odometry, *nearer);
         if (plan.solved()) {
           goal_ = *nearer;
-          goal_face_ = std::atan2(look_at_.y() - goal_.y(), look_at_.x() - goal_.x());
+          const Eigen::Vector2d& at = looked_.back();
+          goal_face_ = std::atan2(at.y() - goal_.y(), at.x() - goal_.x());
           check.kind = GoalCheck::Kind::kReplanned;
           check.path = std::move(plan.path);
           check.event = "the look's place taken by what was just seen: looking from nearby";

@@ -103,11 +103,11 @@ class ExplorationGoals {
   FrontierExplorer explorer_;
   PathPlanner planner_;
   Eigen::Vector2d goal_{0, 0};
-  std::optional<double> goal_face_;      // the heading to turn to there, facing its frontier
-  double goal_wait_ = 0.0;               // s to stand there, facing it
-  bool looking_ = false;                 // the goal is a place to look at a blockage from
-  Eigen::Vector2d look_at_{0.0, 0.0};    // looking: the blockage's middle
-  std::vector<Eigen::Vector2d> looked_;  // blockages looked at (map frame), for good
+  std::optional<double> goal_face_;  // the heading to turn to there, facing its frontier
+  double goal_wait_ = 0.0;           // s to stand there, facing it
+  bool looking_ = false;             // the goal is a place to look at a blockage from
+  // Blockages looked at (map frame), for good; while looking_, the last is the one looked at.
+  std::vector<Eigen::Vector2d> looked_;
   bool has_goal_ = false;
   double goal_deadline_ = 0.0;           // s: given up if not reached by then
   double last_check_ = 0.0;              // s: the path's last check against the map
