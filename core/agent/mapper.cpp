@@ -54,6 +54,17 @@ const RadialMap& Mapper::process(const TrinocularFrame& frame, MotionSegment seg
   const auto t2 = Clock::now();
   timing_.stereo_s += std::chrono::duration<double>(t1 - t0).count();
   timing_.mapping_s += std::chrono::duration<double>(t2 - t1).count();
+  if (config_.centred_scans) {
+    RadialMap centred = last_scan_;
+    if (look_matcher_ && !home_base_look) {
+      look_matcher_->compute(frame.reference, frame.horizontal, frame.vertical, centred_disparity_);
+      centred = buildRadialMap(centred_disparity_, robot_, config_.radial, frame.stamp, pose);
+    }
+    if (!placement_kept_) unmasked_centred_.push_back(centred);
+    maskTeammates(centred, pose);
+    centred_.push_back(std::move(centred));
+    timing_.stereo_s += std::chrono::duration<double>(Clock::now() - t2).count();
+  }
   ++timing_.frames;
   return last_scan_;
 }
@@ -62,6 +73,8 @@ void Mapper::keepPlacement() {
   placement_kept_ = true;
   unmasked_.clear();
   unmasked_.shrink_to_fit();
+  unmasked_centred_.clear();
+  unmasked_centred_.shrink_to_fit();
 }
 
 void Mapper::relocate(const Pose2& X_MO) {
@@ -77,6 +90,12 @@ void Mapper::relocate(const Pose2& X_MO) {
     grid_.insert(scan, pose);
     maskTeammates(scan, pose);
     traverse_.entries[i].scan = std::move(scan);
+    if (config_.centred_scans) {
+      RadialMap centred = unmasked_centred_[i];
+      centred.odometry = pose;
+      maskTeammates(centred, pose);
+      centred_[i] = std::move(centred);
+    }
   }
 }
 
@@ -84,6 +103,7 @@ void Mapper::maskLogged(size_t from) {
   for (size_t i = from; i < traverse_.entries.size(); ++i) {
     RadialMap& scan = traverse_.entries[i].scan;
     maskTeammates(scan, scan.odometry);
+    if (config_.centred_scans) maskTeammates(centred_[i], centred_[i].odometry);
   }
 }
 

@@ -20,6 +20,11 @@ struct MapperConfig {
   StereoConfig stereo;
   RadialMapConfig radial;
   OccupancyConfig occupancy;
+  // Also match every frame on centred windows and keep that radial map beside the logged
+  // one (centredScans): for a measurement of distance along the travel (the distance scale
+  // from stereo), which shifted windows lengthen as they move the edges of thin jambs and
+  // corners. The grid and the traverse log take the configured windows' scans.
+  bool centred_scans = false;
 };
 
 // Wall time spent per stage since construction (for real-time-factor reports).
@@ -81,6 +86,10 @@ class Mapper {
   int maskedReturns() const { return masked_; }  // returns left out so far
   const cv::Mat& lastDisparity() const { return disparity_; }
   const TraverseLog& traverse() const { return traverse_; }
+  // With centred_scans: each traverse entry's radial map as centred windows match its frame
+  // (the same map where the frame was matched on centred windows), at the entry's pose and
+  // masked as the entry is; one per entry, in order. Empty otherwise.
+  const std::vector<RadialMap>& centredScans() const { return centred_; }
   void setRobotName(const std::string& name) { traverse_.robot = name; }
   const StereoStats& lastStereoStats() const { return stats_; }
   const MapperTiming& timing() const { return timing_; }
@@ -99,8 +108,11 @@ class Mapper {
   std::vector<Pose2> raw_odometry_;
   Pose2 frame_;
   bool framed_ = false;
-  RadialMap last_scan_;              // unmasked
-  std::vector<RadialMap> unmasked_;  // every entry's scan as seen, for relocate
+  RadialMap last_scan_;                      // unmasked
+  std::vector<RadialMap> unmasked_;          // every entry's scan as seen, for relocate
+  std::vector<RadialMap> centred_;           // centred_scans: one per entry, masked
+  std::vector<RadialMap> unmasked_centred_;  // ... as seen, for relocate
+  cv::Mat centred_disparity_;
   bool placement_kept_ = false;
   std::vector<Eigen::Vector2d> teammates_;
   double teammate_radius_ = 0.0;

@@ -47,6 +47,7 @@ RobotAgent::RobotAgent(RobotInterface& robot, const AgentSetup& setup,
   MapperConfig mapper;
   mapper.radial.floor_edge_depth = s.floor_edge_depth;
   mapper.radial.beyond_support = s.beyond_support;
+  mapper.centred_scans = s.stereo_distance_scale;  // the scale is matched on centred windows
   mapper_ = std::make_unique<Mapper>(d, setup_.map, mapper);
   mapper_->setRobotName(setup_.name);
   sense_period_ = 1.0 / s.sensing_rate;

@@ -180,9 +180,14 @@ void RobotAgent::calibrateStereoScale(TraverseLog& sortie) {
   if (raw_.size() < sortie_begin_ + sortie.entries.size()) return;
   if (stereo_measured_ != sortie_begin_) {  // once a sortie (a re-approach ends it again)
     stereo_measured_ = sortie_begin_;
+    // On the frames' centred windows' scans (Mapper::centredScans): shifted windows move the
+    // edges of the jambs and corners the scale is matched on.
+    const std::vector<RadialMap>& centred = mapper_->centredScans();
     TraverseLog raw = sortie;
-    for (size_t j = 0; j < raw.entries.size(); ++j)
+    for (size_t j = 0; j < raw.entries.size(); ++j) {
+      if (sortie_begin_ + j < centred.size()) raw.entries[j].scan = centred[sortie_begin_ + j];
       raw.entries[j].scan.odometry = raw_[sortie_begin_ + j];
+    }
     stereo_.add(stereoDistanceScale(raw));
   }
   if (stereo_.pairs() < kMinStereoScalePairs) return;

@@ -41,12 +41,10 @@ struct StereoConfig {
   // side of the edge can win; window / 2 - window_shift px of fattening remain. At most
   // window / 2. With 2: Tsukuba bad pixels 2.94 -> 2.57 %, lab 0.53 -> 0.35 %, phantom
   // radial-map columns beside furniture -23 % on the same frames, door jambs before a
-  // textured room kept, at 2.6x the stereo time; the robot agent matches its looks at the
-  // home base on centred windows all the same (see Mapper::process). Off (0, centred
-  // windows) by default while the distance scale that stereo measures (stereo_distance_scale)
-  // comes out farther from the truth with it; `coopmap stereo-eval --window-shift 2`
-  // measures the matcher.
-  int window_shift = 0;
+  // textured room kept, at 2.6x the stereo time. What measures distance on thin edges is
+  // matched on centred windows all the same: the looks at the home base and the distance
+  // scale from stereo (see Mapper). 0: centred windows.
+  int window_shift = 2;
   // Photometric normalisation before matching. Real cameras differ in gain and offset, and
   // raw SAD does not forgive a few grey levels of offset on weak texture.
   //  kGlobal: each partner's mean and spread are matched to the reference image's (exact for

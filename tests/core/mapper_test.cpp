@@ -1,5 +1,6 @@
 // The mapper's two matchers: frames of a look at the home base are matched on centred
-// windows, every other frame on the configured ones (here shiftable).
+// windows, every other frame on the configured ones (shiftable by default); with
+// centred_scans every frame's centred match is kept beside the logged one.
 #include "core/agent/mapper.h"
 
 #include <cmath>
@@ -62,6 +63,44 @@ TEST(MapperTest, ALookAtTheHomeBaseIsMatchedOnCentredWindows) {
   ASSERT_EQ(mapper.traverse().entries.size(), 2u);
   EXPECT_EQ(mapper.traverse().entries[0].segment, MotionSegment::kStraight);
   EXPECT_EQ(mapper.traverse().entries[1].segment, MotionSegment::kTurn);
+}
+
+// The distance scale from stereo is matched on centred windows: each entry's centred scan is
+// kept beside it, at the entry's pose, moved with it by relocate.
+TEST(MapperTest, KeepsEachFramesCentredScanBesideTheShiftableOne) {
+  const RobotDescription r = robot();
+  TrinocularFrame frame = boxFrame();
+  MapperConfig shiftable;
+  ASSERT_GT(shiftable.stereo.window_shift, 0) << "shiftable windows are the default";
+  shiftable.centred_scans = true;
+  MapperConfig centred = shiftable;
+  centred.stereo.window_shift = 0;
+  centred.centred_scans = false;
+
+  Mapper mapper(r, limits(), shiftable), reference(r, limits(), centred);
+  const RadialMap driving = mapper.process(frame, MotionSegment::kStraight);
+  frame.odometry = Pose2(0.5, 0.0, 0.1);
+  const RadialMap look = mapper.process(frame, MotionSegment::kTurn, true);
+  const RadialMap as_centred = reference.process(frame, MotionSegment::kStraight);
+
+  const std::vector<RadialMap>& kept = mapper.centredScans();
+  ASSERT_EQ(kept.size(), 2u);
+  EXPECT_EQ(kinds(kept[0]), kinds(as_centred));
+  EXPECT_EQ(ranges(kept[0]), ranges(as_centred));
+  EXPECT_NE(kinds(kept[0]), kinds(mapper.traverse().entries[0].scan))
+      << "the logged scan is the shiftable windows'";
+  EXPECT_EQ(kinds(kept[1]), kinds(look));  // a look is matched on centred windows already
+  EXPECT_EQ(kept[1].odometry.x, 0.5);
+
+  const Pose2 X(1.0, -2.0, 0.3);
+  mapper.relocate(X);
+  for (size_t i = 0; i < kept.size(); ++i) {
+    const Pose2 moved = X * mapper.rawOdometry()[i];
+    EXPECT_NEAR(kept[i].odometry.x, moved.x, 1e-12);
+    EXPECT_NEAR(kept[i].odometry.y, moved.y, 1e-12);
+    EXPECT_NEAR(kept[i].odometry.theta, moved.theta, 1e-12);
+  }
+  EXPECT_TRUE(Mapper(r, limits(), centred).centredScans().empty());
 }
 
 }  // namespace
