@@ -230,15 +230,6 @@ void ExplorationGoals::seen() {
     explorer_.blacklist(goal_);
 }
 
-void ExplorationGoals::claim(const std::vector<Eigen::Vector2d>& goals) {
-  for (const Eigen::Vector2d& g : goals) {
-    const bool known = std::any_of(claims_.begin(), claims_.end(), [&](const Eigen::Vector2d& c) {
-      return (c - g).norm() < config_.frontiers.blacklist_radius;
-    });
-    if (!known) claims_.push_back(g);
-  }
-}
-
 void ExplorationGoals::startSortie() {
   claims_.clear();
   explorer_.clearBlacklist();

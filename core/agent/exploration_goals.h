@@ -77,8 +77,10 @@ class ExplorationGoals {
     looking_ = false;
   }
 
-  // Teammates drive to these frontier goals (map frame): claimed until the next sortie.
-  void claim(const std::vector<Eigen::Vector2d>& goals);
+  // Teammates drive to these frontier goals now (map frame): claimed while they do. A goal a
+  // teammate has reached it looked from (the frontiers left there it will not see), and one
+  // it turned from is no one's: the claims are the goals given last.
+  void claim(const std::vector<Eigen::Vector2d>& goals) { claims_ = goals; }
   const std::vector<Eigen::Vector2d>& claims() const { return claims_; }
   // A new sortie after the import of the shared map: the claims are in the map now, and the
   // goals failed in the old frame, on the old map; no goal.
@@ -112,7 +114,7 @@ class ExplorationGoals {
   double goal_deadline_ = 0.0;           // s: given up if not reached by then
   double last_check_ = 0.0;              // s: the path's last check against the map
   bool escaping_ = false;                // stepping off a blocked cell
-  std::vector<Eigen::Vector2d> claims_;  // teammates' goals since the last import
+  std::vector<Eigen::Vector2d> claims_;  // teammates' goals now
   int idle_sorties_ = 0;  // sorties in a row ended for unreachable frontiers, short of min_sortie_m
   int early_returns_ = 0;
   bool exploration_complete_ = false;

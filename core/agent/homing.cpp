@@ -27,9 +27,12 @@ bool Homing::planDue(double now) {
   return true;
 }
 
+bool Homing::nearHome(const Pose2& odometry) const {
+  return (odometry.translation() - target_.translation()).norm() < config_.look_from_m;
+}
+
 bool Homing::blockedNearHome(const Pose2& odometry) {
-  return ++bumps_ >= config_.max_return_bumps &&
-         (odometry.translation() - target_.translation()).norm() < config_.look_from_m;
+  return ++bumps_ >= config_.max_return_bumps && nearHome(odometry);
 }
 
 HomeWay Homing::plan(double now, const Pose2& odometry, const PlanningMaps& maps) {

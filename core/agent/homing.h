@@ -53,6 +53,8 @@ class Homing {
   // A bump on the way home, the robot at `odometry`: true when it is the max_return_bumps-th
   // within look_from_m of home (the way is blocked: look at the home base from there).
   bool blockedNearHome(const Pose2& odometry);
+  // Within look_from_m of home: near enough to look at the home base from there.
+  bool nearHome(const Pose2& odometry) const;
 
  private:
   MissionConfig config_;

@@ -203,9 +203,7 @@ std::optional<MotionCommand> MissionAgent::afterBump(double now, const Pose2& od
     if (homing_.blockedNearHome(odometry)) {
       // Near home but the way is blocked (by what drift hides from the map, or a
       // teammate): look at the home base from here; a fix will bring it home.
-      phase_ = MissionPhase::kLookAgain;
-      startRoute({{odometry.translation(), true, config_.look_turn_rate, 0.0}}, now);
-      last_event_ = "home blocked: looking from here";
+      lookFromHere(now, odometry, "home blocked: looking from here");
       return last_command_ = MotionCommand::stop();
     }
     goHome(now, odometry, map);
@@ -243,6 +241,13 @@ std::optional<MotionCommand> MissionAgent::giveWay(double now, const Pose2& odom
       return std::nullopt;
   }
   follower_.reset();
+  if (phase_ == MissionPhase::kReturn && homing_.nearHome(odometry)) {
+    // Near home and a teammate still in the way after the wait (one parked at its own home
+    // beside this one's will not move): look at the home base from here, as after bumps
+    // near home; a fix will bring it home.
+    lookFromHere(now, odometry, "home blocked by a teammate: looking from here");
+    return last_command_ = MotionCommand::stop();
+  }
   last_event_ = "teammate ahead: planning around it";
   if (phase_ == MissionPhase::kReturn) {
     goHome(now, odometry, map);
@@ -369,6 +374,12 @@ MotionCommand MissionAgent::returnHome(double now, const Pose2& odometry, const 
   phase_ = MissionPhase::kLookAgain;
   startRoute({{homing_.target().translation(), true, config_.look_turn_rate, 0.0}}, now);
   return last_command_ = MotionCommand::stop();
+}
+
+void MissionAgent::lookFromHere(double now, const Pose2& odometry, const std::string& why) {
+  phase_ = MissionPhase::kLookAgain;
+  startRoute({{odometry.translation(), true, config_.look_turn_rate, 0.0}}, now);
+  last_event_ = why;
 }
 
 MotionCommand MissionAgent::lookAgain(double now, const Pose2& odometry) {

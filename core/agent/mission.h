@@ -86,8 +86,9 @@ class MissionAgent {
   void setTeammates(std::vector<Eigen::Vector2d> positions, bool priority);
   int teamStops() const { return team_.teamStops(); }
   int passageWaits() const { return team_.passageWaits(); }  // times it waited for a passage
-  // The frontier goals teammates are driving to now (map frame). They are remembered as
-  // claimed until the robot imports the shared map (continueAfterFix).
+  // The frontier goals teammates are driving to now (map frame): claimed while they drive
+  // there (ExplorationGoals::claim), none after the robot imports the shared map
+  // (continueAfterFix) until they are given again.
   void setTeammateGoals(const std::vector<Eigen::Vector2d>& goals);
   const std::vector<Eigen::Vector2d>& claimed() const { return goals_.claims(); }
   // The frontier goal this robot drives to, if it is exploring towards one.
@@ -120,6 +121,9 @@ class MissionAgent {
   MotionCommand returnHome(double now, const Pose2& odometry, const OccupancyGrid& map,
                            const RadialMap* latest, size_t fresh);
   MotionCommand lookAgain(double now, const Pose2& odometry);
+  // The way home near it is blocked: look at the home base from where the robot stands (a
+  // fix will bring it home); `why` is the event.
+  void lookFromHere(double now, const Pose2& odometry, const std::string& why);
 
   void startRoute(std::vector<Waypoint> route, double now);
   // Chooses the next frontier goal and drives there (or steps off, or goes home).

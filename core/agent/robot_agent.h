@@ -180,6 +180,7 @@ class RobotAgent {
   // The sorties (see endSortie).
   size_t sortie_begin_ = 0;  // the current sortie's first traverse entry
   bool reapproaching_ = false;
+  Pose2 reapproach_fix_;  // the first look's correction (chain frame), while reapproaching_
   int looks_again_ = 0;
   size_t look_from_ = 0;
   Pose2 sortie_frame_;  // the estimate's frame when the sortie began

@@ -244,6 +244,7 @@ void RobotAgent::endSortie(double now) {
     const double off = (first.fix.translation() - home_.translation()).norm();
     if (first.fixed() && off > settings_.reapproach_m) {
       reapproaching_ = true;
+      reapproach_fix_ = first.correction;
       look_from_ = sortie.entries.size();
       std::string line =
           formatted("back %.2f m from the start at %.0f s: driving there by a first fix", off, now);
@@ -257,8 +258,13 @@ void RobotAgent::endSortie(double now) {
       return;
     }
   }
+  // Where the first fix places the robot now: at the start if it got there (a teammate
+  // parked in the way may have kept it short of it, and it looked from there).
   std::optional<Eigen::Vector2d> expected;
-  if (reapproaching_) expected = home_.translation();
+  if (reapproaching_)
+    expected =
+        (reapproach_fix_ * sortie_frame_ * mapper_->frame().inverse() * mapper_->estimate(odo_))
+            .translation();
   if (reapproaching_ && looks_again_ < kLooksAgain) {
     located = coop_->locate(sortie, expected, look_from_);
     const SortieReport& second = located->rep;

@@ -71,6 +71,21 @@ TEST(MissionTest, GoesHomeToShareWhenTheFrontiersLeftAreTeammates) {
   EXPECT_TRUE(mission.claimed().empty());
 }
 
+// A teammate's goal is claimed while the teammate drives to it: one it has reached (it saw
+// what it could from there) or turned from is no one's, and the frontiers near it are this
+// robot's again (stale claims sent a robot home "own part explored" sortie after sortie).
+TEST(MissionTest, ATeammatesGoalIsClaimedOnlyWhileItDrivesThere) {
+  MissionAgent mission(Pose2(2.0, 3.0, 0.0), MissionConfig{});
+  const Eigen::Vector2d first(1.0, 1.0), next(6.0, 5.0);
+  mission.setTeammateGoals({first});
+  ASSERT_EQ(mission.claimed().size(), 1u);
+  mission.setTeammateGoals({next});
+  ASSERT_EQ(mission.claimed().size(), 1u);
+  EXPECT_EQ(mission.claimed().front(), next);
+  mission.setTeammateGoals({});  // on its way home
+  EXPECT_TRUE(mission.claimed().empty());
+}
+
 // The map never changes (the test's robot has no cameras): every frontier's goal, once
 // reached, leaves its frontier unseen, and exploration ends there: the frontiers are "looked
 // from its goal before", and no full turn is taken at a goal.

@@ -215,6 +215,37 @@ TEST(MissionTest, WaitsAtADoorWhileATeammateNearerToItGoesThrough) {
   EXPECT_LT(throughTheDoor(1.2, 1e9).second, 1.5) << "waited for good";
 }
 
+// A teammate parked 0.4 m from this robot's home (done at its own, beside it) will not move:
+// after the wait the robot near home looks at the home base from where it stands, as after
+// bumps near home, rather than wait and plan around it for good (the lab, seeds 5 and 8).
+TEST(MissionTest, LooksFromWhereItStandsWhenATeammateParkedByHomeStaysInTheWay) {
+  const Pose2 home(2.0, 3.0, 0.0);
+  const Eigen::Vector2d parked(2.4, 3.0);
+  const OccupancyGrid map = wallWithADoor(3.0);  // no wall: everything seen and free
+  MissionAgent mission(home, quickFirstSortie());
+  mission.startFrom(home, 0.0);  // the odometry frame is the map frame
+  Pose2 pose = home;
+  const double dt = 0.05;
+  double nearest = 1e9;
+  bool looked_from_here = false;
+  for (int step = 0; step < 6000 && mission.phase() != MissionPhase::kAtHome; ++step) {
+    const MissionPhase before = mission.phase();
+    mission.setTeammates({before == MissionPhase::kReturn ? parked : Eigen::Vector2d(7.5, 5.5)},
+                         false);
+    const MotionCommand cmd = mission.update(step * dt, pose, map, nullptr);
+    if (before == MissionPhase::kLookAtHome && mission.phase() == MissionPhase::kExplore)
+      pose = Pose2(4.0, 3.0, M_PI);  // carried east, facing home past the teammate
+    pose = pose * Pose2(cmd.linear * dt, 0.0, cmd.angular * dt);
+    if (mission.phase() == MissionPhase::kReturn || mission.phase() == MissionPhase::kLookAgain)
+      nearest = std::min(nearest, (pose.translation() - parked).norm());
+    looked_from_here |= mission.lastEvent() == "home blocked by a teammate: looking from here";
+  }
+  ASSERT_EQ(mission.phase(), MissionPhase::kAtHome) << mission.lastEvent();
+  EXPECT_TRUE(looked_from_here);
+  EXPECT_GT(nearest, 0.6) << "drove up to the parked teammate";
+  EXPECT_LT((pose.translation() - home.translation()).norm(), 2.0);  // looked from near home
+}
+
 // A robot carried east of the wall on its way home west of it, through a door `half_width`
 // either side of y = 3 (a multiple of the 5 cm cells), planning with a margin of 0.15 m.
 // Returns its least x on the way home, and its least distance to the jambs' cells (m).
