@@ -68,11 +68,15 @@ GoalChoice ExplorationGoals::choose(double now, const Pose2& odometry, const Pla
   }
   choice.kind = GoalChoice::Kind::kGoal;
   choice.path = step.plan.path;
+  by_map_ = false;
   if (maps.memory().hasRecentHits()) {
     const PlanningMap seen_now = maps();
     if (!pathStillValid(choice.path, seen_now)) {
       const PlanResult around = planner_.plan(seen_now, odometry, step.frontier.goal);
-      if (around.solved()) choice.path = around.path;
+      if (around.solved())
+        choice.path = around.path;
+      else
+        by_map_ = true;  // what was just seen cuts every way: the map's (see recheck)
     }
   }
   goal_ = step.frontier.goal;
@@ -119,6 +123,7 @@ std::optional<GoalChoice> ExplorationGoals::lookAtBlockage(double now, const Pos
     goal_ = look->from;
     has_goal_ = true;
     looking_ = true;
+    by_map_ = false;
     goal_face_ = look->heading;
     goal_wait_ = kLookWait;
     goal_deadline_ =
@@ -153,9 +158,10 @@ std::vector<Waypoint> ExplorationGoals::route(const PlannedPath& path,
 }
 
 std::optional<PlannedPath> ExplorationGoals::pathAround(const PlanningMaps& maps,
-                                                        const Pose2& odometry) const {
+                                                        const Pose2& odometry) {
   const PlanResult around = planner_.plan(maps(), odometry, goal_);
   if (!around.solved()) return std::nullopt;
+  by_map_ = false;
   return around.path;
 }
 
@@ -171,6 +177,7 @@ GoalCheck ExplorationGoals::recheck(const PlanningMaps& maps, const PlannedPath&
   // The map grew under the path: go on if it is still free, else plan anew.
   const PathPlanner::Replan r = planner_.replanIfBlocked(maps(), path, odometry, next);
   if (!r.replanned) return check;
+  by_map_ = false;
   if (r.result.solved()) {
     check.kind = GoalCheck::Kind::kReplanned;
     check.path = r.result.path;
@@ -199,6 +206,18 @@ GoalCheck ExplorationGoals::recheck(const PlanningMaps& maps, const PlannedPath&
     seen();
     check.kind = GoalCheck::Kind::kTakenAsSeen;
     check.event = "goal by what was just seen: taken as seen";
+  } else if (std::optional<PlannedPath> by_map =
+                 maps.memory().hasRecentHits()
+                     ? pathByMap(maps({.recent = false}), path, odometry, next)
+                     : std::nullopt) {
+    // Only what the cameras have just seen closes the way; the map, from every view so far,
+    // has one. A person passing moves on, and what a doorway seen from the side shows in it
+    // (its edge smeared into the opening) goes as the view changes: on by the map, stopping
+    // short of what was just seen ahead while it is remembered (MissionAgent::explore).
+    by_map_ = true;
+    check.kind = GoalCheck::Kind::kReplanned;
+    check.path = std::move(*by_map);
+    check.event = "way closed by what was just seen: going on by the map";
   } else {
     giveUp();
     check.kind = GoalCheck::Kind::kGivenUp;
@@ -207,13 +226,23 @@ GoalCheck ExplorationGoals::recheck(const PlanningMaps& maps, const PlannedPath&
   return check;
 }
 
+std::optional<PlannedPath> ExplorationGoals::pathByMap(const PlanningMap& map,
+                                                       const PlannedPath& path,
+                                                       const Pose2& odometry, size_t next) const {
+  PathPlanner::Replan r = planner_.replanIfBlocked(map, path, odometry, next);
+  if (!r.result.solved()) return std::nullopt;
+  return std::move(r.result.path);
+}
+
 void ExplorationGoals::reached() {
+  by_map_ = false;
   ++goals_reached_;
   if (has_goal_) seen();
   looking_ = false;
 }
 
 void ExplorationGoals::giveUp() {
+  by_map_ = false;
   if (has_goal_ && !looking_) explorer_.blacklist(goal_);
   looking_ = false;
   ++goals_failed_;
@@ -235,6 +264,7 @@ void ExplorationGoals::startSortie() {
   explorer_.clearBlacklist();
   looking_ = false;
   has_goal_ = false;
+  by_map_ = false;
 }
 
 }  // namespace coopmap

@@ -55,7 +55,7 @@ class ExplorationGoals {
   std::vector<Waypoint> route(const PlannedPath& path, const Pose2& odometry) const;
   // A path from `odometry` to the goal on the planning map (what the cameras have just seen
   // included), if there is one.
-  std::optional<PlannedPath> pathAround(const PlanningMaps& maps, const Pose2& odometry) const;
+  std::optional<PlannedPath> pathAround(const PlanningMaps& maps, const Pose2& odometry);
   // The path is due for a check against the grown map at `now` (s): `seen_on_way` (something
   // just seen on the way ahead) or replan_period_s since the last check. Starts the period.
   bool checkDue(double now, bool seen_on_way);
@@ -65,6 +65,9 @@ class ExplorationGoals {
                     size_t next);
 
   bool hasGoal() const { return has_goal_; }
+  // The path to the goal is the map's, cut by what the cameras have just seen (no way round
+  // it): the robot stops short of what was seen ahead while it is remembered.
+  bool byMap() const { return has_goal_ && by_map_; }
   const Eigen::Vector2d& goal() const { return goal_; }
   bool overdue(double now) const { return has_goal_ && now > goal_deadline_; }
   // The robot arrived (with or without a goal): counted; the goal's frontier is seen.
@@ -75,6 +78,7 @@ class ExplorationGoals {
   void drop() {
     has_goal_ = false;
     looking_ = false;
+    by_map_ = false;
   }
 
   // Teammates drive to these frontier goals now (map frame): claimed while they do. A goal a
@@ -100,6 +104,10 @@ class ExplorationGoals {
   std::optional<GoalChoice> lookAtBlockage(double now, const Pose2& odometry,
                                            const PlanningMaps& maps, const PlanningMap& planning,
                                            const ExploreStep& step);
+  // The rest of `path` from `next` on `map` (without what the cameras have just seen), or a
+  // new path to its end when that is blocked; nothing when `map` has no way either.
+  std::optional<PlannedPath> pathByMap(const PlanningMap& map, const PlannedPath& path,
+                                       const Pose2& odometry, size_t next) const;
 
   MissionConfig config_;
   FrontierExplorer explorer_;
@@ -108,6 +116,7 @@ class ExplorationGoals {
   std::optional<double> goal_face_;  // the heading to turn to there, facing its frontier
   double goal_wait_ = 0.0;           // s to stand there, facing it
   bool looking_ = false;             // the goal is a place to look at a blockage from
+  bool by_map_ = false;              // see byMap()
   // Blockages looked at (map frame), for good; while looking_, the last is the one looked at.
   std::vector<Eigen::Vector2d> looked_;
   bool has_goal_ = false;

@@ -296,7 +296,13 @@ MotionCommand MissionAgent::explore(double now, const Pose2& odometry, const Occ
     goHome(now, odometry, map);
     return MotionCommand::stop();
   }
-  if (follower_ && safety_.mustStop(latest, last_command_.linear)) {
+  // On the map's way through what was just seen (ExplorationGoals::byMap): what was seen
+  // ahead stops the robot while it is remembered, though the cameras no longer show it (a
+  // textureless wall seen only where the floor ends before it).
+  const bool seen_ahead =
+      goals_.byMap() && last_command_.linear > 0.0 &&
+      memory_.recentHitAhead(odometry, config_.safety_distance, config_.safety_half_angle);
+  if (follower_ && (safety_.mustStop(latest, last_command_.linear) || seen_ahead)) {
     // Stop; the obstacle is in the map now, so plan to the same goal around it, and give
     // the goal up only when there is no way.
     follower_.reset();

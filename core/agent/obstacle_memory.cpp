@@ -46,6 +46,8 @@ size_t ObstacleMemory::rememberHits(double now, const Pose2& odometry, const Rad
   size_t old = 0;
   while (old < recent_.size() && recent_[old].t < since) ++old;
   recent_.erase(recent_.begin(), recent_.begin() + static_cast<std::ptrdiff_t>(old));
+  sensor_origin_ = scan.sensor_origin;
+  markSeenThrough(odometry, scan);
   const size_t before = recent_.size();
   ++recent_frames_;
   for (const RadialReading& r : scan.readings)
@@ -53,7 +55,8 @@ size_t ObstacleMemory::rememberHits(double now, const Pose2& odometry, const Rad
       recent_.push_back(
           {now, recent_frames_,
            odometry * (scan.sensor_origin +
-                       r.range * Eigen::Vector2d(std::cos(r.bearing), std::sin(r.bearing)))});
+                       r.range * Eigen::Vector2d(std::cos(r.bearing), std::sin(r.bearing))),
+           false});
   return recent_.size() - before;
 }
 
@@ -70,6 +73,40 @@ void ObstacleMemory::addBump(const Pose2& odometry, double bearing) {
         std::clamp(k * config_.bump_radius, -0.5 * config_.bump_width, 0.5 * config_.bump_width);
     bumps_.push_back(odometry * Eigen::Vector2d(edge * at + s * across));
   }
+}
+
+void ObstacleMemory::markSeenThrough(const Pose2& odometry, const RadialMap& scan) {
+  // Past a hit by more than this (m) in its column: the hit's place is seen free. Wider than
+  // stereo's range noise at the 2 m the hits are kept within.
+  constexpr double kPast = 0.15;
+  if (scan.readings.size() < 2) return;
+  const double column = std::abs(scan.readings[1].bearing - scan.readings[0].bearing);
+  const Eigen::Vector2d cameras = odometry * scan.sensor_origin;
+  for (RecentHit& h : recent_) {
+    if (h.seen_through) continue;
+    const Eigen::Vector2d to = h.p - cameras;
+    const double bearing = std::remainder(std::atan2(to.y(), to.x()) - odometry.theta, 2.0 * M_PI);
+    const RadialReading* nearest = nullptr;
+    for (const RadialReading& r : scan.readings)
+      if (!nearest || std::abs(r.bearing - bearing) < std::abs(nearest->bearing - bearing))
+        nearest = &r;
+    if (std::abs(nearest->bearing - bearing) > column) continue;  // out of view
+    h.seen_through = (nearest->kind == RadialKind::kHit || nearest->kind == RadialKind::kBeyond) &&
+                     nearest->range > to.norm() + kPast;
+  }
+}
+
+bool ObstacleMemory::recentHitAhead(const Pose2& odometry, double distance,
+                                    double half_angle) const {
+  const Eigen::Vector2d cameras = odometry * sensor_origin_;
+  for (const RecentHit& h : recent_) {
+    const Eigen::Vector2d to = h.p - cameras;
+    if (!h.seen_through && to.norm() < distance &&
+        std::abs(std::remainder(std::atan2(to.y(), to.x()) - odometry.theta, 2.0 * M_PI)) <
+            half_angle)
+      return true;
+  }
+  return false;
 }
 
 bool ObstacleMemory::freshHitNear(const std::vector<Eigen::Vector2d>& way, size_t fresh) const {

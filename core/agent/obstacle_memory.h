@@ -47,6 +47,11 @@ class ObstacleMemory {
   // One of the last `fresh` hits remembered lies within the planning clearance of `way`
   // (a polyline from the robot, map frame).
   bool freshHitNear(const std::vector<Eigen::Vector2d>& way, size_t fresh) const;
+  // One of the hits remembered lies nearer than `distance` (m) to the cameras of the robot
+  // at `odometry`, within `half_angle` (rad) of straight ahead, and no later radial map saw
+  // past it: what the safety stop sees in the latest radial map, kept while it is remembered
+  // (recent_hits_s) and out of the cameras' sight (nearer than they see, or beside them).
+  bool recentHitAhead(const Pose2& odometry, double distance, double half_angle) const;
   bool hasRecentHits() const { return !recent_.empty(); }
   bool hasTrail() const { return !trail_.cells.empty(); }
 
@@ -64,18 +69,25 @@ class ObstacleMemory {
   void clear();
 
  private:
+  // Marks the hits remembered that `scan`, taken at `odometry`, sees past.
+  void markSeenThrough(const Pose2& odometry, const RadialMap& scan);
+
   struct RecentHit {
     double t;           // s
     int frame;          // counts the scans remembered
     Eigen::Vector2d p;  // map frame (the estimate's)
+    // A later radial map saw past it (a hit beyond it, or free beyond it, in its column):
+    // nothing stands there now, though the planning keeps it for recent_hits_s.
+    bool seen_through = false;
   };
 
   MissionConfig config_;
   std::vector<Eigen::Vector2d> bumps_;  // where the bumpers touched something this sortie
   int recent_frames_ = 0;
-  std::vector<RecentHit> recent_;  // hits of the last recent_hits_s, oldest first
-  GridU8 visited_;                 // cells the robot's body has covered: free, seen or not
-  GridU8 trail_;                   // this sortie's: see trail_after_waits
+  std::vector<RecentHit> recent_;            // hits of the last recent_hits_s, oldest first
+  Eigen::Vector2d sensor_origin_{0.0, 0.0};  // the cameras' (robot frame), from the scans
+  GridU8 visited_;  // cells the robot's body has covered: free, seen or not
+  GridU8 trail_;    // this sortie's: see trail_after_waits
 };
 
 // The maps the mission plans on, built on demand: borrows the robot's map, the memory and the

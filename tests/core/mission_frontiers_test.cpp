@@ -13,6 +13,7 @@
 
 #include "core/agent/mission.h"
 #include "tests/core/mission_test_maps.h"
+#include "tests/core/segment_world.h"
 
 namespace coopmap {
 namespace {
@@ -274,6 +275,77 @@ TEST(MissionTest, ALookWhosePlaceIsSeenBlockedIsTakenFromNearby) {
   EXPECT_LT(std::abs(std::remainder(stood_at.theta - std::atan2(2.0 - stood_at.y, 3.0 - stood_at.x),
                                     2 * M_PI)),
             0.35);  // facing the doorway
+}
+
+// The map has the doorway open (seen through from many places), and from the room the
+// cameras see something in it. What they have just seen closes the only way to the
+// frontiers beyond; the map's way is driven all the same, stopping short of what was seen:
+//  - seen only from farther than 1.3 m (a doorway's edge smeared into the opening when seen
+//    from the side, gone from nearer): the robot goes through. Without driving the map's
+//    way, every goal beyond is given up in turn.
+//  - a textureless panel standing in the doorway, which the map does not hold, seen only
+//    1.2-1.5 m off (where the floor ends before it): the robot stops short of it and never
+//    touches it, though nearer the cameras no longer show it.
+TEST(MissionTest, AWayClosedOnlyByWhatWasJustSeenIsDrivenByTheMap) {
+  using test::Segment;
+  const std::vector<Segment> walls = {{{0.0, 0.0}, {0.0, 4.0}},
+                                      {{0.0, 0.0}, {3.0, 0.0}},
+                                      {{0.0, 4.0}, {3.0, 4.0}},
+                                      {{3.0, 0.0}, {3.0, 1.5}},
+                                      {{3.0, 2.5}, {3.0, 4.0}}};
+  const Segment in_doorway{{3.0, 1.5}, {3.0, 2.5}};
+  std::vector<Segment> closed = walls;
+  closed.push_back(in_doorway);
+  const Eigen::Vector2d doorway(3.0, 2.0);
+  for (const bool panel : {false, true}) {
+    SCOPED_TRACE(panel ? "a panel in the doorway" : "the doorway seen closed from afar");
+    const Pose2 home(1.0, 2.0, 0.0);
+    const OccupancyGrid map = roomAndCorridor(false);
+    MissionConfig c = quickLooks();
+    c.planner.seed = 6;
+    c.recent_hits_s = 4.0;
+    MissionAgent mission(home, c);
+    mission.startFrom(home, 0.0);  // the odometry frame is the map frame
+    Pose2 pose = home;
+    const double dt = 0.05;
+    int closed_frames = 0;
+    double farthest = pose.x, nearest_panel = 1e9;
+    std::string last, events;
+    for (int step = 0; step < 8000 && farthest < 3.6 && !mission.done(); ++step) {
+      std::optional<RadialMap> scan;
+      if (step % 7 == 0) {  // frames at 3 Hz
+        const bool from_afar = (pose.translation() - doorway).norm() > 1.3;
+        scan = test::cameraScan(pose, panel || from_afar ? closed : walls);
+        if (panel) {
+          const RadialMap open = test::cameraScan(pose, walls);
+          for (size_t k = 0; k < scan->readings.size(); ++k) {
+            RadialReading& r = scan->readings[k];
+            const bool on_panel = r.range < open.readings[k].range - 1e-6;
+            if (on_panel && (r.range < 1.2 || r.range > 1.5)) r.kind = RadialKind::kNone;
+            closed_frames += on_panel && r.kind == RadialKind::kHit;
+          }
+        } else {
+          closed_frames += from_afar;
+        }
+      }
+      const MotionCommand cmd = mission.update(step * dt, pose, map, scan ? &*scan : nullptr);
+      if (mission.lastEvent() != last) {
+        last = mission.lastEvent();
+        events += last + "; ";
+      }
+      pose = pose * Pose2(cmd.linear * dt, 0.0, cmd.angular * dt);
+      farthest = std::max(farthest, pose.x);
+      nearest_panel = std::min(nearest_panel, std::abs(3.0 - pose.x));
+    }
+    EXPECT_GE(closed_frames, 2) << "the doorway was never seen closed: " << events;
+    EXPECT_NE(events.find("going on by the map"), std::string::npos) << events;
+    if (panel) {
+      // The body (its radius 0.178 m) never reaches the panel.
+      EXPECT_GT(nearest_panel, c.planning.robot_radius + 0.05) << events;
+    } else {
+      EXPECT_GT(farthest, 3.6) << "never went through the doorway: " << events;
+    }
+  }
 }
 
 }  // namespace
