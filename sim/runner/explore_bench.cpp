@@ -78,16 +78,17 @@ std::string lastLine(const std::string& path) {
   return last;
 }
 
-// Runs `argv` (argv[0] the program) with stdin and stdout on /dev/null and stderr into
-// `log`; returns "" when it exits 0, else what went wrong.
-std::string runChild(const std::vector<std::string>& args, const std::string& log) {
+// Runs `argv` (argv[0] the program) with stdin on /dev/null, stdout into `out` and stderr
+// into `log`; returns "" when it exits 0, else what went wrong.
+std::string runChild(const std::vector<std::string>& args, const std::string& out,
+                     const std::string& log) {
   std::vector<char*> argv;
   for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);
   posix_spawn_file_actions_t files;
   posix_spawn_file_actions_init(&files);
   posix_spawn_file_actions_addopen(&files, 0, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addopen(&files, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&files, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   posix_spawn_file_actions_addopen(&files, 2, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   pid_t pid = 0;
   const int error = posix_spawn(&pid, argv[0], &files, nullptr, argv.data(), environ);
@@ -120,6 +121,7 @@ ExploreRow runOne(const ExploreBenchOptions& o, uint64_t seed, std::mutex& gener
   const std::string world_file = o.out_dir + "/worlds/world_" + name + ".yaml";
   const std::string run_dir = o.out_dir + "/runs/" + name;
   const std::string log = o.out_dir + "/runs/" + name + ".log";
+  const std::string events = o.out_dir + "/runs/" + name + ".events";
   std::vector<std::string> robot_names;
   auto fail = [&](const std::string& reason) {
     row.failed = true;
@@ -147,11 +149,11 @@ ExploreRow runOne(const ExploreBenchOptions& o, uint64_t seed, std::mutex& gener
   const std::string run_seed = std::to_string(row.run_seed);
   std::vector<std::string> args = {
       o.program,           "run",       world_file, "--seed", run_seed, "--duration",
-      seconds(o.duration), "--explore", "--quiet",  "--out",  run_dir};
+      seconds(o.duration), "--explore", "--events", "--out",  run_dir};
   if (o.robots == 1) args.insert(args.end(), {"--robots", "1"});
   using Clock = std::chrono::steady_clock;
   const auto t0 = Clock::now();
-  const std::string error = runChild(args, log);
+  const std::string error = runChild(args, events, log);
   row.wall_time_s = std::chrono::duration<double>(Clock::now() - t0).count();
   if (!error.empty()) return fail(error);
   const std::string metrics = run_dir + "/metrics.json";
@@ -374,7 +376,7 @@ std::string formatExploreMarkdown(const ExploreBenchOptions& o,
        << number(r->time_to_90_s, 0) << " | " << number(r->wall_recall, 3) << " | "
        << number(r->false_occupied_rate, 4) << " | " << r->contacts << " | " << endings(*r) << " | "
        << (r->exploration_complete ? "yes" : "no") << " | [map](runs/" << seed << "/"
-       << r->map_picture << ") |\n";
+       << r->map_picture << "), [events](runs/" << seed << ".events) |\n";
   }
   if (failed > 0) {
     md << "\n## Failed runs\n\n";

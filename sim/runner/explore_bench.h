@@ -32,7 +32,8 @@ struct ExploreBenchOptions {
   int robots = 2;               // 1: jose alone; 2: jose and eric
   double duration = 2400.0;     // s of simulated time per world at most
   int jobs = processorCount();  // children at once
-  // explore.csv, explore.md, worlds/world_<seed>.yaml, runs/<seed>/ and runs/<seed>.log.
+  // explore.csv, explore.md, worlds/world_<seed>.yaml, runs/<seed>/, runs/<seed>.log (the
+  // run's stderr) and runs/<seed>.events (its stdout: the mission events and the summary).
   std::string out_dir;
   std::string program = "/proc/self/exe";  // the coopmap program the children run
   bool progress = false;                   // a line per finished world on stderr

@@ -207,7 +207,9 @@ TEST(ExploreBenchTest, SummaryCountsTargetsAndListsTheWorstFirst) {
   EXPECT_LT(s6, s2);
   EXPECT_LT(s2, s4);
   EXPECT_EQ(md.find("| 5 | loop"), std::string::npos) << md;
-  EXPECT_NE(md.find("[map](runs/6/shared_map_evaluation.png)"), std::string::npos) << md;
+  EXPECT_NE(md.find("[map](runs/6/shared_map_evaluation.png), [events](runs/6.events)"),
+            std::string::npos)
+      << md;
   EXPECT_NE(md.find("- seed 7: killed by signal 6 ([log](runs/7.log))"), std::string::npos) << md;
 }
 
