@@ -1,6 +1,7 @@
 #include "core/agent/obstacle_memory.h"
 
 #include <algorithm>
+#include <iterator>
 #include <unordered_map>
 #include <utility>
 
@@ -79,17 +80,25 @@ void ObstacleMemory::markSeenThrough(const Pose2& odometry, const RadialMap& sca
   // Past a hit by more than this (m) in its column: the hit's place is seen free. Wider than
   // stereo's range noise at the 2 m the hits are kept within.
   constexpr double kPast = 0.15;
-  if (scan.readings.size() < 2) return;
-  const double column = std::abs(scan.readings[1].bearing - scan.readings[0].bearing);
+  const std::vector<RadialReading>& cols = scan.readings;
+  if (cols.size() < 2) return;
+  // One reading per image column: bearings run monotonically, left to right (decreasing) in
+  // a camera's, either way in other scans.
+  const bool descending = cols.front().bearing > cols.back().bearing;
+  const double column = std::abs(cols[1].bearing - cols[0].bearing);
   const Eigen::Vector2d cameras = odometry * scan.sensor_origin;
   for (RecentHit& h : recent_) {
     if (h.seen_through) continue;
     const Eigen::Vector2d to = h.p - cameras;
     const double bearing = std::remainder(std::atan2(to.y(), to.x()) - odometry.theta, 2.0 * M_PI);
-    const RadialReading* nearest = nullptr;
-    for (const RadialReading& r : scan.readings)
-      if (!nearest || std::abs(r.bearing - bearing) < std::abs(nearest->bearing - bearing))
-        nearest = &r;
+    const auto after = std::lower_bound(cols.begin(), cols.end(), bearing,
+                                        [descending](const RadialReading& r, double b) {
+                                          return descending ? r.bearing > b : r.bearing < b;
+                                        });
+    const RadialReading* nearest = after == cols.end() ? &cols.back() : &*after;
+    if (after != cols.begin() &&
+        std::abs(std::prev(after)->bearing - bearing) < std::abs(nearest->bearing - bearing))
+      nearest = &*std::prev(after);
     if (std::abs(nearest->bearing - bearing) > column) continue;  // out of view
     h.seen_through = (nearest->kind == RadialKind::kHit || nearest->kind == RadialKind::kBeyond) &&
                      nearest->range > to.norm() + kPast;
