@@ -82,6 +82,9 @@ RobotAgent::RobotAgent(RobotInterface& robot, const AgentSetup& setup,
     m.bump_away = s.bump_away;
     m.visited_radius = s.visited_radius;
     m.max_linear_accel = s.max_linear_accel;
+    // Turns in place stop as the base can stop them; half its angular acceleration, as a
+    // command reaches the base up to a control step late.
+    m.route.angular_decel = 0.5 * d.max_angular_accel;
     m.recent_hits_s = s.recent_hits_s;
     m.passage_width = s.passage_width;
     m.max_sorties = cooperative ? s.max_sorties : 1;

@@ -18,6 +18,10 @@ void RouteConfig::validate() const {
   if (!(face_tolerance > 0.0)) bad("face_tolerance", face_tolerance);
   if (!(arrive_tolerance > 0.0)) bad("arrive_tolerance", arrive_tolerance);
   if (!(heading_gain > 0.0)) bad("heading_gain", heading_gain);
+  if (!(angular_decel >= 0.0))
+    throw std::invalid_argument(
+        "route config: field 'angular_decel': expected a number >= 0, got " +
+        std::to_string(angular_decel));
 }
 
 MotionCommand limitSpeedUp(MotionCommand cmd, double previous, double accel, double dt) {
@@ -64,6 +68,18 @@ MotionCommand RouteFollower::arrived(const Waypoint& wp, const Pose2& pose, doub
   return MotionCommand::stop();
 }
 
+double RouteFollower::turnRate(double error) const {
+  if (config_.angular_decel > 0.0)
+    return std::copysign(
+        std::min(config_.angular_speed, std::sqrt(2.0 * config_.angular_decel * std::abs(error))),
+        error);
+  const double w =
+      std::clamp(config_.heading_gain * error, -config_.angular_speed, config_.angular_speed);
+  // Keep a minimum turn rate so the robot does not crawl into the tolerance.
+  const double min_w = 0.1;
+  return std::abs(w) < min_w ? std::copysign(min_w, error) : w;
+}
+
 void RouteFollower::afterWait(const Waypoint& wp, const Pose2& pose) {
   if (wp.spin) {
     phase_ = Phase::kSpin;
@@ -89,13 +105,7 @@ MotionCommand RouteFollower::update(const Pose2& pose, double now) {
           phase_ = Phase::kDrive;
           continue;
         }
-        if (std::abs(bearing_err) > config_.heading_tolerance) {
-          const double w = std::clamp(config_.heading_gain * bearing_err, -config_.angular_speed,
-                                      config_.angular_speed);
-          // Keep a minimum turn rate so the robot does not crawl into the tolerance.
-          const double min_w = 0.1;
-          return {0.0, std::abs(w) < min_w ? std::copysign(min_w, bearing_err) : w};
-        }
+        if (std::abs(bearing_err) > config_.heading_tolerance) return {0.0, turnRate(bearing_err)};
         phase_ = Phase::kDrive;
         continue;
       case Phase::kDrive: {
@@ -122,6 +132,8 @@ MotionCommand RouteFollower::update(const Pose2& pose, double now) {
         // Slowly at the end, to within face_tolerance: a look that starts as the start's did
         // sees the same things in the same image columns.
         const double err = wrapAngle(*wp.face - pose.theta);
+        if (wp.face_within >= config_.heading_tolerance && std::abs(err) > wp.face_within)
+          return {0.0, turnRate(err)};  // a look's heading, as coarse as a turn's
         if (std::abs(err) > (wp.face_within > 0.0 ? wp.face_within : config_.face_tolerance)) {
           const double w =
               std::clamp(config_.heading_gain * err, -config_.angular_speed, config_.angular_speed);

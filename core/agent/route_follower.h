@@ -32,7 +32,12 @@ struct RouteConfig {
   double face_tolerance = 0.003;    // rad: a waypoint's `face` heading is turned to this well
   double arrive_tolerance = 0.05;   // m
   double heading_gain = 2.0;        // rad/s per rad of heading error while driving
-  void validate() const;            // throws std::invalid_argument naming the field
+  // rad/s^2: a turn in place slows down no harder than this as it nears its heading (its rate
+  // at most sqrt(2 * angular_decel * error)), so it stops there as the base can stop it. 0:
+  // the rate falls in proportion to the error (heading_gain), never below 0.1 rad/s: the
+  // last tenths of a radian take a second.
+  double angular_decel = 0.0;
+  void validate() const;  // throws std::invalid_argument naming the field
 };
 
 // `cmd` with its linear speed raised from `previous` (m/s, the last command's) by at most
@@ -59,6 +64,7 @@ class RouteFollower {
  private:
   enum class Phase { kTurn, kDrive, kFace, kWait, kSpin };
   MotionCommand arrived(const Waypoint& wp, const Pose2& pose, double now);  // at the waypoint
+  double turnRate(double error) const;  // rad/s of a turn in place `error` (rad) from its heading
   void afterWait(const Waypoint& wp, const Pose2& pose);  // arrived and waited: spin or go on
   std::vector<Waypoint> route_;
   RouteConfig config_;

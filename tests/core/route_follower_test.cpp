@@ -2,7 +2,9 @@
 // place before driving straight, and spin where asked.
 #include "core/agent/route_follower.h"
 
+#include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include <gtest/gtest.h>
 
@@ -114,6 +116,50 @@ TEST(RouteFollowerTest, SpeedingUpIsLimitedAndSlowingDownIsNot) {
   EXPECT_NEAR(limitSpeedUp({-0.1, 0.0}, 0.4, 0.4, 0.05).linear, -0.02, 1e-12);  // reversing
   EXPECT_DOUBLE_EQ(limitSpeedUp(go, 0.0, 0.0, 0.05).linear, 0.4);               // off
   EXPECT_EQ(limitSpeedUp(MotionCommand::straight(2.0), 0.0, 0.4, 0.05).amount, 2.0);
+}
+
+// A quarter turn in place towards a waypoint on a base that turns no faster than it can
+// accelerate (3 rad/s^2) and takes each command a control step late. Returns the steps until
+// the first command to drive, and the heading's largest overshoot of the waypoint's bearing.
+struct QuarterTurn {
+  int steps = 0;
+  double overshoot = 0.0;
+  double error_when_driving = 0.0;
+};
+QuarterTurn quarterTurn(const RouteConfig& config) {
+  RouteFollower f({{{0.0, 2.0}, false}}, config);
+  const double dt = 0.05, max_accel = 3.0, target = M_PI / 2;
+  double theta = 0.0, omega = 0.0, pending = 0.0;
+  QuarterTurn q;
+  for (; q.steps < 2000; ++q.steps) {
+    const MotionCommand c = f.update(Pose2(0.0, 0.0, theta));
+    if (c.linear > 0.0) break;
+    omega += std::clamp(pending - omega, -max_accel * dt, max_accel * dt);
+    pending = c.angular;
+    theta += omega * dt;
+    q.overshoot = std::max(q.overshoot, theta - target);
+  }
+  q.error_when_driving = std::abs(wrapAngle(target - theta));
+  return q;
+}
+
+TEST(RouteFollowerTest, ATurnInPlaceSlowsDownAsTheBaseCanStopIt) {
+  RouteConfig proportional;
+  RouteConfig decelerating;
+  decelerating.angular_decel = 1.5;  // half the base's
+  const QuarterTurn slow = quarterTurn(proportional);
+  const QuarterTurn fast = quarterTurn(decelerating);
+  ASSERT_LT(slow.steps, 2000);
+  ASSERT_LT(fast.steps, 2000);
+  // The proportional law crawls through the last tenths of a radian; the decelerating one
+  // holds its rate until the base must brake: a quarter turn half a second sooner.
+  EXPECT_LE(fast.steps + 10, slow.steps) << fast.steps << " vs " << slow.steps;
+  // ... and still stops on the bearing: within the tolerance, never past it by more.
+  EXPECT_LE(fast.error_when_driving, decelerating.heading_tolerance);
+  EXPECT_LE(fast.overshoot, decelerating.heading_tolerance);
+  RouteConfig bad;
+  bad.angular_decel = -1.0;
+  EXPECT_THROW(bad.validate(), std::invalid_argument);
 }
 
 TEST(RouteFollowerTest, EmptyRouteStops) {
