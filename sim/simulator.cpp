@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/robot/braking.h"
+
 namespace coopmap::sim {
 
 Simulator::Simulator(World world, uint64_t seed) : world_(std::move(world)), seed_(seed) {
@@ -175,8 +177,7 @@ void Simulator::driveSegment(RobotState& r) {
     if (std::abs(left) < 0.002) {
       r.segment = MotionCommand::stop();
     } else {
-      const double w =
-          std::min(d.max_angular_speed, std::sqrt(2.0 * d.max_angular_accel * std::abs(left)));
+      const double w = brakingSpeed(left, d.max_angular_accel, d.max_angular_speed);
       v.angular = std::copysign(std::max(0.05, 0.8 * w), left);
     }
   } else {
@@ -186,8 +187,7 @@ void Simulator::driveSegment(RobotState& r) {
     if (std::abs(left) < 0.002) {
       r.segment = MotionCommand::stop();
     } else {
-      const double speed =
-          std::min(d.max_linear_speed, std::sqrt(2.0 * d.max_linear_accel * std::abs(left)));
+      const double speed = brakingSpeed(left, d.max_linear_accel, d.max_linear_speed);
       v.linear = std::copysign(std::max(0.02, 0.8 * speed), left);
       v.angular = 2.0 * wrapAngle(r.segment_start.theta - now.theta);
     }

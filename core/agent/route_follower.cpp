@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/robot/braking.h"
+
 namespace coopmap {
 
 void RouteConfig::validate() const {
@@ -70,9 +72,7 @@ MotionCommand RouteFollower::arrived(const Waypoint& wp, const Pose2& pose, doub
 
 double RouteFollower::turnRate(double error) const {
   if (config_.angular_decel > 0.0)
-    return std::copysign(
-        std::min(config_.angular_speed, std::sqrt(2.0 * config_.angular_decel * std::abs(error))),
-        error);
+    return std::copysign(brakingSpeed(error, config_.angular_decel, config_.angular_speed), error);
   const double w =
       std::clamp(config_.heading_gain * error, -config_.angular_speed, config_.angular_speed);
   // Keep a minimum turn rate so the robot does not crawl into the tolerance.

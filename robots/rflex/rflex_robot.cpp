@@ -12,6 +12,8 @@
 #include <utility>
 #include <vector>
 
+#include "core/robot/braking.h"
+
 namespace coopmap {
 namespace {
 
@@ -310,8 +312,7 @@ void RflexRobot::controlStep(double t) {
       if (std::abs(left) < kTurnTolerance) {
         finished = true;
       } else {
-        const double rate =
-            std::min(d.max_angular_speed, std::sqrt(2.0 * d.max_angular_accel * std::abs(left)));
+        const double rate = brakingSpeed(left, d.max_angular_accel, d.max_angular_speed);
         w = std::copysign(std::max(kMinSegmentTurnRate, kProfileMargin * rate), left);
       }
     } else {
@@ -321,8 +322,7 @@ void RflexRobot::controlStep(double t) {
       if (std::abs(left) < kStraightTolerance) {
         finished = true;
       } else {
-        const double speed =
-            std::min(d.max_linear_speed, std::sqrt(2.0 * d.max_linear_accel * std::abs(left)));
+        const double speed = brakingSpeed(left, d.max_linear_accel, d.max_linear_speed);
         v = std::copysign(std::max(kMinSegmentSpeed, kProfileMargin * speed), left);
         w = std::clamp(2.0 * wrapAngle(segment_start_.theta - pose.theta), -d.max_angular_speed,
                        d.max_angular_speed);
