@@ -8,6 +8,13 @@
 
 namespace coopmap {
 
+namespace {
+
+// Homes nearer than this (m) are the same: no fix moved it.
+constexpr double kSameHome = 0.01;
+
+}  // namespace
+
 const char* toString(MissionPhase p) {
   switch (p) {
     case MissionPhase::kLookAtHome:
@@ -63,19 +70,19 @@ void MissionAgent::moveHome(const Pose2& home) {
   homing_.setTarget(home);
 }
 
-void MissionAgent::lookFrom(const Waypoint& look, double now) {
+void MissionAgent::lookFrom(const Waypoint& look) {
   if (phase_ != MissionPhase::kAtStart) return;
   phase_ = MissionPhase::kLookAtHome;
   pose_jumped_ = true;  // the poses given are the map frame's from now on
   approach_look_ = look;
-  startRoute({look}, now);
+  startRoute({look});
   last_event_ = "driving nearer to the home base to look again";
 }
 
-void MissionAgent::lookAgainAtStart(double now) {
+void MissionAgent::lookAgainAtStart() {
   if (phase_ != MissionPhase::kAtStart) return;
   phase_ = MissionPhase::kLookAtHome;
-  startRoute({{home_.translation(), true, config_.look_turn_rate, 0.0}}, now);
+  startRoute({{home_.translation(), true, config_.look_turn_rate, 0.0}});
   last_event_ = "no home base found from the start: looking again";
 }
 
@@ -88,6 +95,7 @@ void MissionAgent::continueAfterFix(double now) {
     return;
   }
   ++sortie_;
+  looked_from_here_ = false;
   homing_.startSortie(home_);
   phase_ = MissionPhase::kExplore;
   sortie_start_ = now;
@@ -102,6 +110,11 @@ void MissionAgent::continueAfterFix(double now) {
 
 void MissionAgent::returnAgain(const Pose2& home) {
   if (phase_ != MissionPhase::kAtHome) return;
+  if (looked_from_here_ &&
+      (home.translation() - homing_.target().translation()).norm() < kSameHome) {
+    lookFromHere(last_pose_, "home blocked: looking again from here");
+    return;
+  }
   homing_.returnTo(home);
   phase_ = MissionPhase::kReturn;
   pose_jumped_ = true;
@@ -143,7 +156,7 @@ MotionCommand MissionAgent::decide(double now, const Pose2& odometry, const Occu
   if (start_time_ < 0.0) {  // the first update: look at the home base from the start
     start_time_ = sortie_start_ = now;
     last_pose_ = odometry;
-    startRoute({{home_.translation(), true, config_.look_turn_rate, config_.look_wait_s}}, now);
+    startRoute({{home_.translation(), true, config_.look_turn_rate, config_.look_wait_s}});
   }
   if (!pose_jumped_) travelled_ += std::hypot(odometry.x - last_pose_.x, odometry.y - last_pose_.y);
   pose_jumped_ = false;
@@ -203,7 +216,7 @@ std::optional<MotionCommand> MissionAgent::afterBump(double now, const Pose2& od
     if (homing_.blockedNearHome(odometry)) {
       // Near home but the way is blocked (by what drift hides from the map, or a
       // teammate): look at the home base from here; a fix will bring it home.
-      lookFromHere(now, odometry, "home blocked: looking from here");
+      lookFromHere(odometry, "home blocked: looking from here");
       return last_command_ = MotionCommand::stop();
     }
     goHome(now, odometry, map);
@@ -245,7 +258,7 @@ std::optional<MotionCommand> MissionAgent::giveWay(double now, const Pose2& odom
     // Near home and a teammate still in the way after the wait (one parked at its own home
     // beside this one's will not move): look at the home base from here, as after bumps
     // near home; a fix will bring it home.
-    lookFromHere(now, odometry, "home blocked by a teammate: looking from here");
+    lookFromHere(odometry, "home blocked by a teammate: looking from here");
     return last_command_ = MotionCommand::stop();
   }
   last_event_ = "teammate ahead: planning around it";
@@ -253,7 +266,7 @@ std::optional<MotionCommand> MissionAgent::giveWay(double now, const Pose2& odom
     goHome(now, odometry, map);
   } else if (goals_.hasGoal()) {
     if (std::optional<PlannedPath> around = goals_.pathAround(planningMaps(map), odometry))
-      followToGoal(std::move(*around), odometry, now);
+      followToGoal(std::move(*around), odometry);
     else
       goals_.drop();  // not given up: the way is only blocked for now
   }
@@ -267,7 +280,7 @@ MotionCommand MissionAgent::lookAtHome(double now, const Pose2& odometry, const 
     Waypoint here = *approach_look_;
     here.position = odometry.translation();
     approach_look_.reset();
-    startRoute({here}, now);
+    startRoute({here});
     last_event_ = "obstacle ahead: looking at the home base from here";
     return last_command_ = MotionCommand::stop();
   }
@@ -309,7 +322,7 @@ MotionCommand MissionAgent::explore(double now, const Pose2& odometry, const Occ
     last_event_ = "obstacle ahead: stopped";
     if (goals_.hasGoal()) {
       if (std::optional<PlannedPath> around = goals_.pathAround(planningMaps(map), odometry)) {
-        followToGoal(std::move(*around), odometry, now);
+        followToGoal(std::move(*around), odometry);
         last_event_ = "obstacle ahead: replanned around it";
       } else {
         goals_.giveUp();
@@ -337,7 +350,7 @@ MotionCommand MissionAgent::explore(double now, const Pose2& odometry, const Occ
       case GoalCheck::Kind::kClear:
         break;
       case GoalCheck::Kind::kReplanned:
-        followToGoal(std::move(check.path), odometry, now);
+        followToGoal(std::move(check.path), odometry);
         last_event_ = check.event;
         break;
       case GoalCheck::Kind::kTakenAsSeen:
@@ -378,13 +391,15 @@ MotionCommand MissionAgent::returnHome(double now, const Pose2& odometry, const 
     return last_command_ = MotionCommand::stop();
   }
   phase_ = MissionPhase::kLookAgain;
-  startRoute({{homing_.target().translation(), true, config_.look_turn_rate, 0.0}}, now);
+  looked_from_here_ = false;
+  startRoute({{homing_.target().translation(), true, config_.look_turn_rate, 0.0}});
   return last_command_ = MotionCommand::stop();
 }
 
-void MissionAgent::lookFromHere(double now, const Pose2& odometry, const std::string& why) {
+void MissionAgent::lookFromHere(const Pose2& odometry, const std::string& why) {
   phase_ = MissionPhase::kLookAgain;
-  startRoute({{odometry.translation(), true, config_.look_turn_rate, 0.0}}, now);
+  startRoute({{odometry.translation(), true, config_.look_turn_rate, 0.0}});
+  looked_from_here_ = true;
   last_event_ = why;
 }
 
@@ -396,7 +411,7 @@ MotionCommand MissionAgent::lookAgain(double now, const Pose2& odometry) {
   return last_command_ = MotionCommand::stop();
 }
 
-void MissionAgent::startRoute(std::vector<Waypoint> route, double) {
+void MissionAgent::startRoute(std::vector<Waypoint> route) {
   follower_ = std::make_unique<RouteFollower>(std::move(route), config_.route);
   homing_.routeStarted();  // a new route ends any wait for a way home
 }
@@ -406,21 +421,21 @@ void MissionAgent::chooseGoal(double now, const Pose2& odometry, const Occupancy
   last_event_ = choice.event;
   switch (choice.kind) {
     case GoalChoice::Kind::kStepOff:
-      startRoute(std::move(choice.route), now);
+      startRoute(std::move(choice.route));
       break;
     case GoalChoice::Kind::kGoHome:
       goHome(now, odometry, map);
       break;
     case GoalChoice::Kind::kGoal:
       path_ = std::move(choice.path);
-      startRoute(std::move(choice.route), now);
+      startRoute(std::move(choice.route));
       break;
   }
 }
 
-void MissionAgent::followToGoal(PlannedPath path, const Pose2& odometry, double now) {
+void MissionAgent::followToGoal(PlannedPath path, const Pose2& odometry) {
   path_ = std::move(path);
-  startRoute(goals_.route(path_, odometry), now);
+  startRoute(goals_.route(path_, odometry));
 }
 
 void MissionAgent::goHome(double now, const Pose2& odometry, const OccupancyGrid& map) {
@@ -429,7 +444,7 @@ void MissionAgent::goHome(double now, const Pose2& odometry, const OccupancyGrid
   HomeWay way = homing_.plan(now, odometry, planningMaps(map));
   path_ = std::move(way.path);
   if (way.route)
-    startRoute(std::move(*way.route), now);
+    startRoute(std::move(*way.route));
   else
     follower_.reset();
   if (!way.event.empty()) last_event_ = way.event;

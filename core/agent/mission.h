@@ -53,9 +53,9 @@ class MissionAgent {
   void moveHome(const Pose2& home);
   // In phase kAtStart: drive to `look` (the map frame's, as every pose given to update from
   // now on) and take the look there (phase kLookAtHome, then kAtStart again).
-  void lookFrom(const Waypoint& look, double now);
+  void lookFrom(const Waypoint& look);
   // In phase kAtStart: the look found no home base; turn again where it stands.
-  void lookAgainAtStart(double now);
+  void lookAgainAtStart();
 
   // The command for now (s), given the odometry pose, the robot's map (odometry frame) and
   // the latest radial map (nullptr if none since the last call), and whether the bumpers
@@ -71,6 +71,9 @@ class MissionAgent {
   void continueAfterFix(double now);
   // In phase kAtHome: drive to `home` (the home pose as the robot's estimate now places it:
   // a fix showed the estimate off) and look again there, then wait in kAtHome once more.
+  // After a look taken where the robot stood because the way home was blocked, with home
+  // where it was (no fix moved it), the look again is taken there too: the same way home
+  // would meet the same blockage.
   void returnAgain(const Pose2& home);
   // Ends the mission where the robot is (e.g. it could not be localized at home: it no
   // longer knows where it is, and exploring on would only drive it into things).
@@ -123,13 +126,13 @@ class MissionAgent {
   MotionCommand lookAgain(double now, const Pose2& odometry);
   // The way home near it is blocked: look at the home base from where the robot stands (a
   // fix will bring it home); `why` is the event.
-  void lookFromHere(double now, const Pose2& odometry, const std::string& why);
+  void lookFromHere(const Pose2& odometry, const std::string& why);
 
-  void startRoute(std::vector<Waypoint> route, double now);
+  void startRoute(std::vector<Waypoint> route);
   // Chooses the next frontier goal and drives there (or steps off, or goes home).
   void chooseGoal(double now, const Pose2& odometry, const OccupancyGrid& map);
   // Follows `path` to the exploration goal from `odometry`.
-  void followToGoal(PlannedPath path, const Pose2& odometry, double now);
+  void followToGoal(PlannedPath path, const Pose2& odometry);
   // Phase kReturn, on the way home from `odometry` (or waiting for one).
   void goHome(double now, const Pose2& odometry, const OccupancyGrid& map);
   // The maps to plan on from where the robot stands, with its teammates.
@@ -154,7 +157,8 @@ class MissionAgent {
   double sortie_start_ = -1.0;             // of the current sortie
   int sortie_ = 1;
   bool pose_jumped_ = false;
-  double travelled_ = 0.0;  // m this sortie
+  double travelled_ = 0.0;         // m this sortie
+  bool looked_from_here_ = false;  // the last look was taken where home was blocked
   Pose2 last_pose_;
   bool lost_ = false;
   std::string last_event_;

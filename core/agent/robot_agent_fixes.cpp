@@ -81,7 +81,7 @@ void RobotAgent::localizeStart(double now) {
                      fix.method + ")");
       look_begin_ = mapper_->traverse().entries.size();
       if (mission_) {
-        mission_->lookAgainAtStart(now);
+        mission_->lookAgainAtStart();
       } else {
         const MissionConfig c;
         look_ = std::make_unique<RouteFollower>(
@@ -136,7 +136,7 @@ void RobotAgent::localizeStart(double now) {
     log_.push_back(
         formatted("%.0f s: driving %.2f m nearer to look again", now, distance - kLookDistance));
     if (mission_)
-      mission_->lookFrom(again, now);
+      mission_->lookFrom(again);
     else
       look_ = std::make_unique<RouteFollower>(std::vector<Waypoint>{again}, RouteConfig{});
     return;

@@ -1,9 +1,10 @@
 // The mission's way home: its planner bounded by iterations (the same seed, the same run),
 // no straight drive through the map when there is no way home, no long way round through
-// the unknown, and doors one robot at a time.
+// the unknown, doors one robot at a time, and a look again where home was blocked taken there.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -382,6 +383,57 @@ TEST(MissionTest, WithNoWayHomeForLongItGoesHomeOnTheTrailItDroveOutOn) {
   EXPECT_LT(smeared.least, 1.5) << "did not go home through the door";
   EXPECT_LT(smeared.waiting, 8 * 40);
   EXPECT_GT(smeared.clearance, 0.178 + 0.05) << "touched a jamb";
+}
+
+// A glass wall the cameras never see across the room at x 2.9-3.1 m, home west of it at (2, 3),
+// the robot carried east of it (4.5, 3) facing home as its first sortie sets off. It bumps into
+// the wall near home twice and looks at the home base from where it stands; the look gives no
+// fix and it is asked to look again at the same home (RobotAgent: "no fix from the look").
+// Returns the control steps it touched the wall after that, and how far it drove (m).
+std::pair<int, double> lookAgainAfterHomeBlocked() {
+  const Pose2 home(2.0, 3.0, 0.0);
+  const OccupancyGrid map = wallWithADoor(3.0);  // no wall in the map: all seen and free
+  const MissionConfig c = quickFirstSortie();
+  MissionAgent mission(home, c);
+  mission.startFrom(home, 0.0);  // the odometry frame is the map frame
+  Pose2 pose = home;
+  const double dt = 0.05;
+  bool asked_again = false;
+  int touching_after = 0;
+  double driven_after = 0.0;
+  for (int step = 0; step < 6000; ++step) {
+    if (mission.phase() == MissionPhase::kAtHome) {
+      if (asked_again) break;
+      EXPECT_EQ(mission.lastEvent(), "home blocked: looking from here");
+      mission.returnAgain(home);
+      asked_again = true;
+    }
+    const bool touching = pose.x - c.planning.robot_radius < 3.1 && pose.x > 2.9;
+    const MissionPhase before = mission.phase();
+    const MotionCommand cmd = mission.update(step * dt, pose, map, nullptr, touching,
+                                             touching ? std::optional<double>(0.0) : std::nullopt);
+    if (before == MissionPhase::kLookAtHome && mission.phase() == MissionPhase::kExplore)
+      pose = Pose2(4.5, 3.0, M_PI);
+    const Pose2 next = pose * Pose2(cmd.linear * dt, 0.0, cmd.angular * dt);
+    if (asked_again) {
+      touching_after += touching;
+      driven_after += (next.translation() - pose.translation()).norm();
+    }
+    // The wall stops the body a bumper's give past where it touches.
+    pose = next.x - c.planning.robot_radius < 2.95 && next.x > 2.9 ? pose : next;
+  }
+  EXPECT_TRUE(asked_again) << "never came home: " << mission.lastEvent();
+  EXPECT_EQ(mission.phase(), MissionPhase::kAtHome) << mission.lastEvent();
+  return {touching_after, driven_after};
+}
+
+TEST(MissionTest, LooksAgainFromWhereItStoodWhenHomeWasBlocked) {
+  // The test set's world 1033: a robot back with its estimate 1.4 m off bumped twice near
+  // home, looked from there, got no fix, drove at home by its estimate into the same place
+  // and bumped, three times over. Looking again where it stands, it touches nothing more.
+  const auto [touching, driven] = lookAgainAfterHomeBlocked();
+  EXPECT_EQ(touching, 0) << "touched the wall again";
+  EXPECT_LT(driven, 0.05) << "drove while looking again";
 }
 
 }  // namespace
