@@ -26,7 +26,7 @@ GoalChoice ExplorationGoals::choose(double now, const Pose2& odometry, const Pla
       escaping_ = true;
       has_goal_ = false;
       choice.kind = GoalChoice::Kind::kStepOff;
-      choice.route = {{*to, false, 0.0, 0.0}};
+      choice.route = {ontoCell(*to, planning.limits().resolution)};
       choice.event = "stepping off a blocked cell";
       return choice;
     }

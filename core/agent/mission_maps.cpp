@@ -24,6 +24,12 @@ std::optional<Eigen::Vector2d> nearestFreeCell(const PlanningMap& planning,
   return to;
 }
 
+Waypoint ontoCell(const Eigen::Vector2d& centre, double resolution) {
+  Waypoint wp{centre, false, 0.0, 0.0};
+  wp.arrive_tolerance = 0.25 * resolution;
+  return wp;
+}
+
 std::optional<Eigen::Vector2d> nearestReachable(const PlanningMap& planning,
                                                 const Eigen::Vector2d& from,
                                                 const Eigen::Vector2d& to) {

@@ -16,6 +16,10 @@ namespace coopmap {
 // The free cell nearest `from` within `within` (m) on `planning`, if any.
 std::optional<Eigen::Vector2d> nearestFreeCell(const PlanningMap& planning,
                                                const Eigen::Vector2d& from, double within);
+// A waypoint onto the free cell centred at `centre` of a map at `resolution` (m) that counts
+// as reached only inside that cell: the route's arrival tolerance can be as wide as a cell, and
+// a robot "arrived" within it can still stand on the blocked cell it was stepping off.
+Waypoint ontoCell(const Eigen::Vector2d& centre, double resolution);
 // The free cell of `from`'s region nearest `to`, if it is at least 0.5 m nearer `to` than
 // `from` is.
 std::optional<Eigen::Vector2d> nearestReachable(const PlanningMap& planning,

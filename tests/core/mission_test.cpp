@@ -178,6 +178,46 @@ TEST(MissionTest, WaitsForATeammateConvergingFromTheSide) {
   EXPECT_LT(closest(true, &stops), disc);
 }
 
+// A sortie that starts on a cell the planner will not start from (an obstacle 0.2 m from the
+// robot's cell, the next cell over clear of it): the robot steps onto that free cell, 3 cm
+// away (within the route's arrival tolerance), and plans to the frontier from there; it does not
+// take itself for arrived where it stood and go home "on a blocked cell".
+TEST(MissionTest, StepsOntoAFreeCellNearerThanTheArrivalTolerance) {
+  const MapLimits lim = MapLimits::covering({0.0, 0.0}, {8.0, 6.0}, 0.05);
+  const Eigen::Vector2d obstacle(1.825, 3.025);
+  const OccupancyGrid map =
+      mission_test::gridOf(lim, [&](const Eigen::Vector2d& c) -> std::optional<int16_t> {
+        if (c.x() > 5.0) return std::nullopt;
+        return (c - obstacle).norm() < 0.01 ? 1000 : -1000;
+      });
+  const Pose2 home(2.045, 3.03, 0.0);
+  const Eigen::Vector2d free_cell(2.075, 3.025);
+  MissionConfig c = quickLooks();
+  c.planner.seed = 6;
+  const PlanningMap planning(map, c.planning);
+  ASSERT_FALSE(planning.freeAt(home.translation()));
+  ASSERT_TRUE(planning.freeAt(free_cell));
+  ASSERT_LT((free_cell - home.translation()).norm(), c.route.arrive_tolerance);
+  MissionAgent mission(home, c);
+  mission.startFrom(home, 0.0);  // the odometry frame is the map frame
+  Pose2 pose = home;
+  const double dt = 0.05;
+  std::vector<std::string> events;
+  for (int step = 0; step < 1200; ++step) {  // to the frontier, where the map ends
+    const MotionCommand cmd = mission.update(step * dt, pose, map, nullptr);
+    if (events.empty() || events.back() != mission.lastEvent())
+      events.push_back(mission.lastEvent());
+    if (mission.phase() != MissionPhase::kLookAtHome && mission.phase() != MissionPhase::kExplore)
+      break;
+    pose = pose * Pose2(cmd.linear * dt, 0.0, cmd.angular * dt);
+  }
+  std::string all;
+  for (const std::string& e : events) all += e + "; ";
+  EXPECT_NE(all.find("stepping off a blocked cell; to frontier"), std::string::npos) << all;
+  EXPECT_EQ(all.find("on a blocked cell: going home"), std::string::npos) << all;
+  EXPECT_GT((pose.translation() - home.translation()).norm(), 1.0) << all;
+}
+
 TEST(MissionTest, SlowsDownForWhatIsNearAhead) {
   // Cruise 0.4 m/s; an obstacle 0.65 m ahead, halfway between safety_distance (0.3 m) and
   // slow_distance (1 m), halves the speed; once it is gone, the robot speeds up again.
