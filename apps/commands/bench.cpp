@@ -1,4 +1,5 @@
-// coopmap bench: the scenario benchmarks, `bench drift` and `bench explore`.
+// coopmap bench: the scenario benchmarks, `bench drift` and `bench explore`, and `bench
+// speedup`, two robots against one on the worlds of two `bench explore` outputs.
 #include <cstdio>
 #include <stdexcept>
 #include <string>
@@ -7,6 +8,7 @@
 #include "apps/commands/commands.h"
 #include "sim/runner/drift_bench.h"
 #include "sim/runner/explore_bench.h"
+#include "sim/runner/team_speedup.h"
 
 namespace coopmap::apps {
 namespace {
@@ -122,6 +124,37 @@ int ExploreBenchCommand::run() {
   return 0;
 }
 
+class SpeedupBenchCommand : public Command {
+ public:
+  explicit SpeedupBenchCommand(CLI::App& bench);
+  int run() override;
+
+ private:
+  std::string two_dir_, one_dir_;
+};
+
+SpeedupBenchCommand::SpeedupBenchCommand(CLI::App& bench)
+    : Command(bench.add_subcommand(
+          "speedup",
+          "Two robots against one: reads two `bench explore` outputs of the same seeds, one "
+          "run with two robots and one with --robots 1, and prints (Markdown) in how many "
+          "worlds two robots reached 90 % coverage sooner, the median speed-up, and a row per "
+          "world.")) {
+  CLI::App* cmd = cli();
+  cmd->add_option("--two", two_dir_, "Output of `bench explore` with two robots")
+      ->required()
+      ->check(CLI::ExistingDirectory);
+  cmd->add_option("--one", one_dir_, "Output of `bench explore --robots 1` on the same seeds")
+      ->required()
+      ->check(CLI::ExistingDirectory);
+}
+
+int SpeedupBenchCommand::run() {
+  const TeamSpeedup comparison = compareTeams(two_dir_, one_dir_);
+  std::printf("%s", formatTeamSpeedup(comparison, two_dir_, one_dir_).c_str());
+  return 0;
+}
+
 }  // namespace
 
 std::unique_ptr<Command> addBenchCommand(CLI::App& app) {
@@ -129,6 +162,7 @@ std::unique_ptr<Command> addBenchCommand(CLI::App& app) {
   bench->cli()->require_subcommand(1);
   bench->add(std::make_unique<DriftBenchCommand>(*bench->cli()));
   bench->add(std::make_unique<ExploreBenchCommand>(*bench->cli()));
+  bench->add(std::make_unique<SpeedupBenchCommand>(*bench->cli()));
   return bench;
 }
 

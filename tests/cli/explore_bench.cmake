@@ -1,6 +1,7 @@
 # `coopmap bench explore`: a row per generated world with its seed and scores, the summary
 # naming the worst worlds; a run that fails is reported in its row and the benchmark goes
-# on; bad options exit with code 2 and a message naming the option.
+# on; bad options exit with code 2 and a message naming the option. One robot on the same
+# worlds, and two robots against one (`bench speedup`).
 file(REMOVE_RECURSE "${WORK_DIR}")
 file(MAKE_DIRECTORY "${WORK_DIR}")
 
@@ -57,6 +58,28 @@ foreach(seed 1 2)
 endforeach()
 if(NOT md MATCHES "\\| all four \\| [0-2] \\|")
   message(FATAL_ERROR "explore.md does not count the targets:\n${md}")
+endif()
+
+# One robot on the same worlds, and two robots against one (`bench speedup`): both worlds
+# compared; a two-robot output given as the one-robot one is refused, naming its file.
+execute_process(COMMAND "${COOPMAP}" bench explore --first-seed 1 --count 2 --duration 20
+                        --robots 1 --jobs 2 --quiet --out "${WORK_DIR}/one"
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+file(STRINGS "${WORK_DIR}/one/explore.csv" rows)
+list(GET rows 1 row)
+if(NOT rc EQUAL 0 OR NOT row MATCHES "^1,1,[a-z]+,[0-9.]+,1,[0-9.]+,.*,jose,")
+  message(FATAL_ERROR "coopmap bench explore --robots 1 failed (${rc}):\n${out}${err}\n${row}")
+endif()
+execute_process(COMMAND "${COOPMAP}" bench speedup --two "${WORK_DIR}/b" --one "${WORK_DIR}/one"
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0 OR NOT out MATCHES "sooner in [0-2] of 2 worlds"
+   OR NOT out MATCHES "\\| 2 \\| generated_[a-z]+_2 \\| ")
+  message(FATAL_ERROR "coopmap bench speedup (${rc}):\n${out}${err}")
+endif()
+execute_process(COMMAND "${COOPMAP}" bench speedup --two "${WORK_DIR}/b" --one "${WORK_DIR}/b"
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 2 OR NOT err MATCHES "runs/1/metrics.json: expected a run of 1 robot, got 2")
+  message(FATAL_ERROR "bench speedup took two robots for one (${rc}):\n${out}${err}")
 endif()
 
 # The same world with other noise: the run's seed is the world's plus the offset, in the
